@@ -1,0 +1,156 @@
+// Problem description for the cable solver: materials, inline bodies, the line from anchor to
+// top, the environment and the top boundary condition. Plain structs, no ROS, no YAML.
+//
+// Frame (REP 103): x east, y north, z up; z = 0 is the mean sea surface. The 2-D solver works in
+// the vertical x-z plane through the anchor. All quantities SI.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mooring_dynamics {
+namespace core {
+
+/// Axial constitutive law T(eps): linear (EA) or a piecewise-linear tension-strain table.
+struct Material {
+  std::string name;
+  double EA = 0.0;                        ///< axial stiffness [N]; used when the table is empty
+  std::vector<std::pair<double, double>> tension_strain;  ///< (strain [-], tension [N]), strain increasing
+  double EI = 0.0;                        ///< bending stiffness [N m^2], > 0
+  double GJ = 0.0;                        ///< torsional stiffness [N m^2] (3-D only)
+  double mass = 0.0;                      ///< mass per unstretched length [kg/m]
+  double added_mass = 0.0;                ///< normal added mass per unstretched length [kg/m]
+  double wet_weight = 0.0;                ///< weight in water per unstretched length [N/m]; < 0 is buoyant
+  double diameter = 0.0;                  ///< hydrodynamic diameter [m]
+  double cdn = 0.0;                       ///< normal drag coefficient [-]
+  double cdt = 0.0;                       ///< tangential drag coefficient [-]
+  double max_strain = 0.2;                ///< strain beyond which the law is not trusted [-]
+
+  /// Effective tension T(eps) [N] and its slope dT/deps [N].
+  double tension(double eps) const;
+  double tensionSlope(double eps) const;
+  /// Inverse law: strain at tension T [-].
+  double strainAt(double T) const;
+};
+
+/// A point body on the line: float, clump weight or instrument.
+struct Body {
+  std::string name;
+  double mass = 0.0;         ///< [kg]
+  double added_mass = 0.0;   ///< [kg]
+  double wet_weight = 0.0;   ///< weight in water [N]; negative is buoyant
+  double diameter = 0.0;     ///< diameter of the sphere with the same projected area [m]
+  double cdn = 0.0;          ///< drag coefficient normal to the line [-]
+  double cdt = 0.0;          ///< drag coefficient along the line [-]
+};
+
+/// A body placed on a segment at a distance from the segment's lower end.
+struct BodyPlacement {
+  std::size_t body = 0;  ///< index into Problem::bodies
+  double at = 0.0;       ///< unstretched arclength from the segment's lower end [m], 0 <= at <= length
+};
+
+/// A uniform cable segment. Segments are listed from the anchor to the top.
+struct Segment {
+  std::size_t material = 0;            ///< index into Problem::materials
+  double length = 0.0;                 ///< unstretched length [m]
+  double spacing = 1.0;                ///< target node spacing [m]; the segment gets ceil(length/spacing) intervals
+  std::vector<BodyPlacement> bodies;   ///< inline bodies on this segment
+};
+
+/// One point of a current profile table.
+struct CurrentPoint {
+  double depth = 0.0;          ///< depth below the mean surface [m], >= 0
+  double speed = 0.0;          ///< [m/s], >= 0
+  double direction = 0.0;      ///< direction the water flows toward, counterclockwise from +x (east) [rad]
+};
+
+/// Seabed: elastic foundation (paper section 5.3).
+struct Seabed {
+  double stiffness = 1.0e5;    ///< k, force per unit line length per metre of penetration [N/m^2]
+  double damping = 0.0;        ///< b, dashpot per unit line length [N s/m^2] (dynamics)
+  /// Optional bottom profile (x [m], depth [m]) with x increasing; empty means flat at Environment::depth.
+  std::vector<std::pair<double, double>> profile;
+};
+
+struct Environment {
+  double water_density = 1025.0;  ///< rho_w [kg/m^3]
+  double air_density = 1.225;     ///< [kg/m^3]
+  double gravity = 9.81;          ///< g [m/s^2]
+  double depth = 100.0;           ///< water depth for a flat seabed [m]
+  Seabed seabed;
+  std::vector<CurrentPoint> current;  ///< profile, depth increasing; empty means no current
+  double wind_speed = 0.0;            ///< at the buoy [m/s]
+  double wind_direction = 0.0;        ///< direction the wind blows toward, counterclockwise from +x [rad]
+
+  /// Seabed elevation z_bot(x) [m] (negative below the surface) and its slope dz_bot/dx [-].
+  double seabedElevation(double x) const;
+  double seabedSlope(double x) const;
+  /// Current velocity (east, north) [m/s] at elevation z [m] (z <= 0 in water).
+  void currentAt(double z, double& ux, double& uy) const;
+};
+
+/// A surface buoy at the top of the line (paper 5.1): its draft balances the line.
+struct SurfaceBuoy {
+  enum class Shape { Sphere, Cylinder };  ///< cylinder: vertical axis
+  Shape shape = Shape::Sphere;
+  double diameter = 1.0;   ///< [m]
+  double height = 1.0;     ///< cylinder height [m]; a sphere's is its diameter
+  double mass = 0.0;       ///< [kg]
+  double added_mass = 0.0; ///< [kg] (dynamics)
+  double cd = 1.0;         ///< drag coefficient of the submerged part [-]
+  double wind_area = 0.0;  ///< projected area above water [m^2]
+  double wind_cd = 1.0;    ///< drag coefficient in air [-]
+
+  double totalHeight() const { return shape == Shape::Sphere ? diameter : height; }
+  /// Submerged volume [m^3] and its derivative [m^2] at draft d [m] (clamped to [0, height]).
+  double submergedVolume(double d) const;
+  double submergedVolumeSlope(double d) const;
+  /// Submerged projected area seen by a horizontal current [m^2] and its derivative [m] at draft d.
+  double submergedArea(double d) const;
+  double submergedAreaSlope(double d) const;
+};
+
+/// What holds the top end of the line in statics.
+struct TopBoundary {
+  enum class Type { Force, Position, Buoy };
+  Type type = Type::Position;
+  double fx = 0.0, fz = 0.0;   ///< Force: force applied to the line's top end by the platform [N]
+  double x = 0.0, z = 0.0;     ///< Position: top end position in the problem frame [m]
+  SurfaceBuoy buoy;            ///< Buoy: the buoy that floats at the top
+};
+
+/// Numerical options of the static solver (Newton relaxation, paper section 6).
+struct StaticOptions {
+  double tolerance = 1.0e-9;      ///< convergence when the scaled update sigma (eq. 39) falls below this [-]
+  int max_iterations = 500;       ///< Newton iterations before giving up
+  double relaxation = 1.0;        ///< mu0, the baseline relaxation factor, in (0, 1]
+  bool adaptive_relaxation = true;///< eqs. 40-41; false keeps mu = mu0 throughout
+  double R1 = 1.1;                ///< mu divided by R1 when sigma grows (eq. 40), > R2
+  double R2 = 1.02;               ///< mu multiplied by R2 when sigma shrinks (eq. 41), > 1
+
+  /// Empty when valid, else a message naming the field, its value and the constraint.
+  std::string validate() const;
+};
+
+/// A complete single-line problem.
+struct Problem {
+  std::string name;
+  Environment environment;
+  std::vector<Material> materials;
+  std::vector<Body> bodies;
+  std::vector<Segment> segments;  ///< anchor to top
+  double anchor_x = 0.0;          ///< anchor position [m]
+  double anchor_z = -100.0;       ///< [m]
+  TopBoundary top;
+  StaticOptions static_options;
+
+  double totalLength() const;
+  /// Empty when the problem is consistent, else a message naming the field, value and constraint.
+  std::string validate() const;
+};
+
+}  // namespace core
+}  // namespace mooring_dynamics

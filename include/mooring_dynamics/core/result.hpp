@@ -1,0 +1,46 @@
+// Results of the static solver: per-node state, end forces and a convergence summary.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mooring_dynamics {
+namespace core {
+
+/// What a nonlinear solve did. Non-convergence is a result, not an exception.
+struct SolverSummary {
+  bool converged = false;
+  int iterations = 0;          ///< Newton iterations taken
+  double error = 0.0;          ///< final scaled update sigma (paper eq. 39) [-]
+  double relaxation = 0.0;     ///< final relaxation factor mu [-]
+  std::string message;         ///< human-readable outcome
+};
+
+/// Value of the solution at one node. Positions are in the problem frame (x east, z up, z = 0 at
+/// the mean sea surface).
+struct NodeState {
+  double s = 0.0;         ///< unstretched arclength from the anchor [m]
+  double x = 0.0;         ///< [m]
+  double z = 0.0;         ///< [m]
+  double tension = 0.0;   ///< effective tension T [N]
+  double shear = 0.0;     ///< shear force Sn [N]
+  double angle = 0.0;     ///< inclination phi from the vertical, positive toward +x [rad]
+  double curvature = 0.0; ///< Omega3 = dphi/ds [1/m]
+  double strain = 0.0;    ///< eps [-]
+  int segment = 0;        ///< index of the segment the node belongs to
+};
+
+struct StaticResult {
+  std::vector<NodeState> nodes;  ///< anchor (first) to top (last)
+  double top_force_x = 0.0;      ///< force the line's top end receives from the platform/buoy [N]
+  double top_force_z = 0.0;      ///< [N]
+  double anchor_force_x = 0.0;   ///< force the line exerts on the anchor [N]
+  double anchor_force_z = 0.0;   ///< [N]
+  double buoy_draft = 0.0;       ///< surface buoy draft [m] (buoy top boundary only)
+  SolverSummary summary;
+
+  double topTension() const { return nodes.empty() ? 0.0 : nodes.back().tension; }
+};
+
+}  // namespace core
+}  // namespace mooring_dynamics
