@@ -1,0 +1,44 @@
+// Newton relaxation with adaptive relaxation factor (paper section 6, eqs. 38-41).
+// Shared by the static and dynamic solvers: each supplies a NewtonSystem.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "mooring_dynamics/core/banded_matrix.hpp"
+#include "mooring_dynamics/core/result.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+/// A square nonlinear system R(Y) = 0 with a banded Jacobian.
+class NewtonSystem {
+ public:
+  virtual ~NewtonSystem() = default;
+  virtual int size() const = 0;
+  virtual int lowerBandwidth() const = 0;
+  virtual int upperBandwidth() const = 0;
+  /// Residual R(Y); when J is non-null also the Jacobian dR/dY (J is zeroed by the caller).
+  virtual void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) = 0;
+  /// chi_m of eq. 39 for unknown i: the magnitude of a physically negligible change.
+  virtual double scale(int i) const = 0;
+  /// Human-readable name of unknown i, e.g. "node 12 (s = 5.50 m) phi".
+  virtual std::string describe(int i) const = 0;
+};
+
+struct NewtonOptions {
+  double tolerance = 1.0e-9;  ///< stop when sigma (eq. 39) < tolerance
+  int max_iterations = 500;
+  double mu0 = 1.0;           ///< baseline relaxation factor
+  bool adaptive = true;       ///< eqs. 40-41
+  double R1 = 1.1;
+  double R2 = 1.02;
+};
+
+/// Iterate Y^{k+1} = Y^k + mu dY^k (eq. 38) from the initial guess in Y until sigma^k (eq. 39)
+/// falls below the tolerance. Y holds the last iterate on return, converged or not.
+SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options);
+
+}  // namespace core
+}  // namespace mooring_dynamics

@@ -1,0 +1,38 @@
+// The assembled 2-D static problem as a NewtonSystem (exposed for tests: Jacobian against
+// finite differences, relaxation studies).
+#pragma once
+
+#include <string>
+
+#include "mooring_dynamics/core/mesh.hpp"
+#include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/newton.hpp"
+#include "mooring_dynamics/core/result.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+class StaticSystem2D : public NewtonSystem {
+ public:
+  StaticSystem2D(const Problem& problem, const Mesh& mesh);
+  int size() const override;
+  int lowerBandwidth() const override { return 8; }
+  int upperBandwidth() const override { return 8; }
+  void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override;
+  double scale(int i) const override;
+  std::string describe(int i) const override;
+
+ private:
+  const Problem& problem_;
+  const Mesh& mesh_;
+  double chi_[6];
+};
+
+/// Per-node values and end forces from the Newton state vector.
+StaticResult staticResultFromState(const Problem& problem, const Mesh& mesh, const Eigen::VectorXd& Y);
+
+/// Newton options from the static options of a problem.
+NewtonOptions newtonOptions(const StaticOptions& options);
+
+}  // namespace core
+}  // namespace mooring_dynamics

@@ -1,0 +1,295 @@
+#include "mooring_dynamics/core/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "mooring_dynamics/core/table.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+/// Returns "key = value: constraint" when `ok` is false, else "".
+std::string check(bool ok, const std::string& key, double value, const std::string& constraint) {
+  if (ok) return {};
+  return key + " = " + fmt(value) + ": " + constraint;
+}
+
+bool finite(double v) { return std::isfinite(v); }
+
+}  // namespace
+
+// --- Material --------------------------------------------------------------------------------
+
+double Material::tension(double eps) const {
+  if (tension_strain.empty()) return EA * eps;
+  return interpolateTable(tension_strain, eps);
+}
+
+double Material::tensionSlope(double eps) const {
+  if (tension_strain.empty()) return EA;
+  return interpolateTableSlope(tension_strain, eps);
+}
+
+double Material::strainAt(double T) const {
+  if (tension_strain.empty()) return T / EA;
+  // Invert the increasing piecewise-linear table (extrapolated linearly at both ends).
+  std::vector<std::pair<double, double>> inverse;
+  inverse.reserve(tension_strain.size());
+  for (const auto& p : tension_strain) inverse.emplace_back(p.second, p.first);
+  return interpolateTable(inverse, T);
+}
+
+// --- Environment -----------------------------------------------------------------------------
+
+double Environment::seabedElevation(double x) const {
+  if (seabed.profile.empty()) return -depth;
+  return -interpolateTableClamped(seabed.profile, x);
+}
+
+double Environment::seabedSlope(double x) const {
+  if (seabed.profile.size() < 2) return 0.0;
+  if (x <= seabed.profile.front().first || x >= seabed.profile.back().first) return 0.0;
+  return -interpolateTableSlope(seabed.profile, x);
+}
+
+void Environment::currentAt(double z, double& ux, double& uy) const {
+  ux = uy = 0.0;
+  if (current.empty()) return;
+  const double d = std::max(0.0, -z);
+  // Interpolate the velocity components (not speed and direction) between table points.
+  auto comp = [&](const CurrentPoint& c, double& cx, double& cy) {
+    cx = c.speed * std::cos(c.direction);
+    cy = c.speed * std::sin(c.direction);
+  };
+  if (d <= current.front().depth || current.size() == 1) {
+    comp(current.front(), ux, uy);
+    return;
+  }
+  if (d >= current.back().depth) {
+    comp(current.back(), ux, uy);
+    return;
+  }
+  for (std::size_t i = 1; i < current.size(); ++i) {
+    if (d <= current[i].depth) {
+      double ax, ay, bx, by;
+      comp(current[i - 1], ax, ay);
+      comp(current[i], bx, by);
+      const double w = (d - current[i - 1].depth) / (current[i].depth - current[i - 1].depth);
+      ux = ax + w * (bx - ax);
+      uy = ay + w * (by - ay);
+      return;
+    }
+  }
+}
+
+// --- Surface buoy ----------------------------------------------------------------------------
+
+double SurfaceBuoy::submergedVolume(double d) const {
+  const double h = totalHeight();
+  d = std::clamp(d, 0.0, h);
+  const double R = 0.5 * diameter;
+  if (shape == Shape::Sphere) return kPi * d * d * (3.0 * R - d) / 3.0;  // spherical cap
+  return kPi * R * R * d;
+}
+
+double SurfaceBuoy::submergedVolumeSlope(double d) const {
+  const double h = totalHeight();
+  if (d <= 0.0 || d >= h) return 0.0;
+  const double R = 0.5 * diameter;
+  if (shape == Shape::Sphere) return kPi * d * (2.0 * R - d);  // waterplane area
+  return kPi * R * R;
+}
+
+double SurfaceBuoy::submergedArea(double d) const {
+  const double h = totalHeight();
+  d = std::clamp(d, 0.0, h);
+  const double R = 0.5 * diameter;
+  if (shape == Shape::Sphere) {
+    // Circular segment of height d.
+    const double c = std::clamp((R - d) / R, -1.0, 1.0);
+    return R * R * std::acos(c) - (R - d) * std::sqrt(std::max(0.0, 2.0 * R * d - d * d));
+  }
+  return diameter * d;
+}
+
+double SurfaceBuoy::submergedAreaSlope(double d) const {
+  const double h = totalHeight();
+  if (d <= 0.0 || d >= h) return 0.0;
+  const double R = 0.5 * diameter;
+  if (shape == Shape::Sphere) return 2.0 * std::sqrt(std::max(0.0, 2.0 * R * d - d * d));  // chord
+  return diameter;
+}
+
+// --- Options and problem validation ----------------------------------------------------------
+
+std::string StaticOptions::validate() const {
+  std::string e;
+  if (!(e = check(finite(tolerance) && tolerance > 0.0, "solver.static.tolerance", tolerance, "must be > 0")).empty()) return e;
+  if (max_iterations < 1)
+    return "solver.static.max_iterations = " + std::to_string(max_iterations) + ": must be >= 1";
+  if (!(e = check(finite(relaxation) && relaxation > 0.0 && relaxation <= 1.0, "solver.static.relaxation", relaxation,
+                  "must be in (0, 1]")).empty()) return e;
+  if (!(e = check(finite(R2) && R2 > 1.0, "solver.static.R2", R2, "must be > 1")).empty()) return e;
+  if (!(e = check(finite(R1) && R1 > R2, "solver.static.R1", R1, "must be > R2 = " + fmt(R2))).empty()) return e;
+  return {};
+}
+
+double Problem::totalLength() const {
+  double L = 0.0;
+  for (const auto& s : segments) L += s.length;
+  return L;
+}
+
+namespace {
+
+std::string validateMaterial(const Material& m) {
+  const std::string k = "materials." + m.name + ".";
+  std::string e;
+  if (m.tension_strain.empty()) {
+    if (!(e = check(finite(m.EA) && m.EA > 0.0, k + "EA", m.EA, "must be > 0")).empty()) return e;
+  } else {
+    if (m.tension_strain.size() < 2)
+      return k + "tension_strain has " + std::to_string(m.tension_strain.size()) + " rows: needs at least 2";
+    for (std::size_t i = 0; i < m.tension_strain.size(); ++i) {
+      const auto& p = m.tension_strain[i];
+      const std::string r = k + "tension_strain[" + std::to_string(i) + "]";
+      if (!finite(p.first) || !finite(p.second)) return r + " = [" + fmt(p.first) + ", " + fmt(p.second) + "]: must be finite";
+      if (i > 0 && !(p.first > m.tension_strain[i - 1].first))
+        return r + " strain " + fmt(p.first) + ": strains must increase";
+      if (i > 0 && !(p.second > m.tension_strain[i - 1].second))
+        return r + " tension " + fmt(p.second) + ": tensions must increase";
+    }
+  }
+  if (!(e = check(finite(m.EI) && m.EI > 0.0, k + "EI", m.EI, "must be > 0 (the formulation needs bending stiffness; use a small value for ropes and chain)")).empty()) return e;
+  if (!(e = check(finite(m.GJ) && m.GJ >= 0.0, k + "GJ", m.GJ, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.mass) && m.mass >= 0.0, k + "mass", m.mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.added_mass) && m.added_mass >= 0.0, k + "added_mass", m.added_mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.wet_weight), k + "wet_weight", m.wet_weight, "must be finite")).empty()) return e;
+  if (!(e = check(finite(m.diameter) && m.diameter > 0.0, k + "diameter", m.diameter, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(m.cdn) && m.cdn >= 0.0, k + "cdn", m.cdn, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.cdt) && m.cdt >= 0.0, k + "cdt", m.cdt, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.max_strain) && m.max_strain > 0.0, k + "max_strain", m.max_strain, "must be > 0")).empty()) return e;
+  return {};
+}
+
+std::string validateBody(const Body& b) {
+  const std::string k = "bodies." + b.name + ".";
+  std::string e;
+  if (!(e = check(finite(b.mass) && b.mass >= 0.0, k + "mass", b.mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.added_mass) && b.added_mass >= 0.0, k + "added_mass", b.added_mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.wet_weight), k + "wet_weight", b.wet_weight, "must be finite")).empty()) return e;
+  if (!(e = check(finite(b.diameter) && b.diameter >= 0.0, k + "diameter", b.diameter, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.cdn) && b.cdn >= 0.0, k + "cdn", b.cdn, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.cdt) && b.cdt >= 0.0, k + "cdt", b.cdt, "must be >= 0")).empty()) return e;
+  return {};
+}
+
+std::string validateBuoy(const SurfaceBuoy& b) {
+  const std::string k = "top.buoy.";
+  std::string e;
+  if (!(e = check(finite(b.diameter) && b.diameter > 0.0, k + "diameter", b.diameter, "must be > 0")).empty()) return e;
+  if (b.shape == SurfaceBuoy::Shape::Cylinder &&
+      !(e = check(finite(b.height) && b.height > 0.0, k + "height", b.height, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(b.mass) && b.mass >= 0.0, k + "mass", b.mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.added_mass) && b.added_mass >= 0.0, k + "added_mass", b.added_mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.cd) && b.cd >= 0.0, k + "cd", b.cd, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.wind_area) && b.wind_area >= 0.0, k + "wind_area", b.wind_area, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.wind_cd) && b.wind_cd >= 0.0, k + "wind_cd", b.wind_cd, "must be >= 0")).empty()) return e;
+  return {};
+}
+
+}  // namespace
+
+std::string Problem::validate() const {
+  std::string e;
+  const Environment& env = environment;
+  if (!(e = check(finite(env.water_density) && env.water_density > 0.0, "environment.water_density", env.water_density, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(env.air_density) && env.air_density >= 0.0, "environment.air_density", env.air_density, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(env.gravity) && env.gravity > 0.0, "environment.gravity", env.gravity, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(env.depth) && env.depth > 0.0, "environment.depth", env.depth, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(env.seabed.stiffness) && env.seabed.stiffness > 0.0, "environment.seabed.stiffness", env.seabed.stiffness, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(env.seabed.damping) && env.seabed.damping >= 0.0, "environment.seabed.damping", env.seabed.damping, "must be >= 0")).empty()) return e;
+  for (std::size_t i = 0; i < env.seabed.profile.size(); ++i) {
+    const auto& p = env.seabed.profile[i];
+    const std::string r = "environment.seabed.profile[" + std::to_string(i) + "]";
+    if (!finite(p.first) || !finite(p.second)) return r + " = [" + fmt(p.first) + ", " + fmt(p.second) + "]: must be finite";
+    if (!(p.second > 0.0)) return r + " depth = " + fmt(p.second) + ": must be > 0";
+    if (i > 0 && !(p.first > env.seabed.profile[i - 1].first)) return r + " x = " + fmt(p.first) + ": x must increase";
+  }
+  for (std::size_t i = 0; i < env.current.size(); ++i) {
+    const auto& c = env.current[i];
+    const std::string r = "environment.current[" + std::to_string(i) + "]";
+    if (!(e = check(finite(c.depth) && c.depth >= 0.0, r + ".depth", c.depth, "must be >= 0")).empty()) return e;
+    if (i > 0 && !(c.depth > env.current[i - 1].depth)) return r + ".depth = " + fmt(c.depth) + ": depths must increase";
+    if (!(e = check(finite(c.speed) && c.speed >= 0.0, r + ".speed", c.speed, "must be >= 0")).empty()) return e;
+    if (!(e = check(finite(c.direction), r + ".direction_deg", c.direction, "must be finite")).empty()) return e;
+  }
+  if (!(e = check(finite(env.wind_speed) && env.wind_speed >= 0.0, "environment.wind.speed", env.wind_speed, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(env.wind_direction), "environment.wind.direction_deg", env.wind_direction, "must be finite")).empty()) return e;
+
+  if (materials.empty()) return "materials: at least one material is needed";
+  for (const auto& m : materials)
+    if (!(e = validateMaterial(m)).empty()) return e;
+  for (const auto& b : bodies)
+    if (!(e = validateBody(b)).empty()) return e;
+  if (segments.empty()) return "line: at least one segment is needed";
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const Segment& s = segments[i];
+    const std::string r = "line[" + std::to_string(i) + "]";
+    if (s.material >= materials.size()) return r + ".material index " + std::to_string(s.material) + ": unknown material";
+    if (!(e = check(finite(s.length) && s.length > 0.0, r + ".length", s.length, "must be > 0")).empty()) return e;
+    if (!(e = check(finite(s.spacing) && s.spacing > 0.0, r + ".spacing", s.spacing, "must be > 0")).empty()) return e;
+    for (std::size_t j = 0; j < s.bodies.size(); ++j) {
+      const auto& bp = s.bodies[j];
+      const std::string rb = r + ".bodies[" + std::to_string(j) + "]";
+      if (bp.body >= bodies.size()) return rb + ".body index " + std::to_string(bp.body) + ": unknown body";
+      if (!(e = check(finite(bp.at) && bp.at >= 0.0 && bp.at <= s.length, rb + ".at", bp.at,
+                      "must be within [0, " + fmt(s.length) + "] (the segment length)")).empty()) return e;
+    }
+  }
+  if (!(e = check(finite(anchor_x), "anchor.x", anchor_x, "must be finite")).empty()) return e;
+  if (!(e = check(finite(anchor_z) && anchor_z <= 0.0, "anchor.z", anchor_z, "must be <= 0 (z = 0 is the sea surface)")).empty()) return e;
+  const double zb = env.seabedElevation(anchor_x);
+  if (!(e = check(anchor_z >= zb - 1e-6 * env.depth, "anchor.z", anchor_z,
+                  "is below the seabed elevation " + fmt(zb) + " m at anchor.x")).empty()) return e;
+
+  switch (top.type) {
+    case TopBoundary::Type::Force:
+      if (!(e = check(finite(top.fx), "top.force.x", top.fx, "must be finite")).empty()) return e;
+      if (!(e = check(finite(top.fz), "top.force.z", top.fz, "must be finite")).empty()) return e;
+      break;
+    case TopBoundary::Type::Position: {
+      if (!(e = check(finite(top.x), "top.position.x", top.x, "must be finite")).empty()) return e;
+      if (!(e = check(finite(top.z), "top.position.z", top.z, "must be finite")).empty()) return e;
+      double reach = 0.0;
+      for (const auto& s : segments) reach += s.length * (1.0 + materials[s.material].max_strain);
+      const double dx = top.x - anchor_x, dz = top.z - anchor_z;
+      const double dist = std::hypot(dx, dz);
+      if (!(dist < reach)) {
+        return "top.position = (" + fmt(top.x) + ", " + fmt(top.z) + "): " + fmt(dist) +
+               " m from the anchor, farther than the stretched line can reach (" + fmt(reach) +
+               " m: unstretched length " + fmt(totalLength()) + " m at each material's max_strain)";
+      }
+      break;
+    }
+    case TopBoundary::Type::Buoy:
+      if (!(e = validateBuoy(top.buoy)).empty()) return e;
+      break;
+  }
+  return static_options.validate();
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics
