@@ -1,0 +1,173 @@
+// Writing static results: JSON, CSV and plain-text summaries. Hand-written, no extra library.
+#include "mooring_dynamics/core/result_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace mooring_dynamics {
+namespace core {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+/// Full-precision number (round-trips a double); JSON has no NaN/Inf, so those become null.
+std::string jsonNumber(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string csvNumber(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      case '\b': out += "\\b"; break;
+      case '\f': out += "\\f"; break;
+      default:
+        if (c < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += ch;  // UTF-8 passes through unchanged
+        }
+    }
+  }
+  return out + "\"";
+}
+
+template <class Get>
+void jsonArray(std::ostream& out, const char* key, const std::vector<NodeState>& nodes, Get get,
+               bool last = false) {
+  out << "    \"" << key << "\": [";
+  for (std::size_t i = 0; i < nodes.size(); ++i) out << (i ? ", " : "") << get(nodes[i]);
+  out << "]" << (last ? "\n" : ",\n");
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+const char* topTypeName(const TopBoundary& top) {
+  switch (top.type) {
+    case TopBoundary::Type::Force: return "force";
+    case TopBoundary::Type::Position: return "position";
+    case TopBoundary::Type::Buoy: return "buoy";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+void writeStaticJson(std::ostream& out, const Problem& problem, const StaticResult& r) {
+  const SolverSummary& sm = r.summary;
+  out << "{\n";
+  out << "  \"name\": " << jsonString(problem.name) << ",\n";
+  out << "  \"top_boundary\": " << jsonString(topTypeName(problem.top)) << ",\n";
+  out << "  \"summary\": {\n";
+  out << "    \"converged\": " << (sm.converged ? "true" : "false") << ",\n";
+  out << "    \"iterations\": " << sm.iterations << ",\n";
+  out << "    \"error\": " << jsonNumber(sm.error) << ",\n";
+  out << "    \"relaxation\": " << jsonNumber(sm.relaxation) << ",\n";
+  out << "    \"message\": " << jsonString(sm.message) << "\n";
+  out << "  },\n";
+  out << "  \"top_force\": {\"x\": " << jsonNumber(r.top_force_x) << ", \"z\": " << jsonNumber(r.top_force_z)
+      << "},\n";
+  out << "  \"anchor_force\": {\"x\": " << jsonNumber(r.anchor_force_x)
+      << ", \"z\": " << jsonNumber(r.anchor_force_z) << "},\n";
+  out << "  \"top_tension\": " << jsonNumber(r.topTension()) << ",\n";
+  out << "  \"buoy_draft\": " << jsonNumber(r.buoy_draft) << ",\n";
+  out << "  \"node_count\": " << r.nodes.size() << ",\n";
+  out << "  \"nodes\": {\n";
+  const auto& n = r.nodes;
+  jsonArray(out, "s", n, [](const NodeState& v) { return jsonNumber(v.s); });
+  jsonArray(out, "x", n, [](const NodeState& v) { return jsonNumber(v.x); });
+  jsonArray(out, "z", n, [](const NodeState& v) { return jsonNumber(v.z); });
+  jsonArray(out, "tension", n, [](const NodeState& v) { return jsonNumber(v.tension); });
+  jsonArray(out, "shear", n, [](const NodeState& v) { return jsonNumber(v.shear); });
+  jsonArray(out, "angle", n, [](const NodeState& v) { return jsonNumber(v.angle); });
+  jsonArray(out, "curvature", n, [](const NodeState& v) { return jsonNumber(v.curvature); });
+  jsonArray(out, "strain", n, [](const NodeState& v) { return jsonNumber(v.strain); });
+  jsonArray(out, "segment", n, [](const NodeState& v) { return std::to_string(v.segment); }, true);
+  out << "  },\n";
+  out << "  \"units\": {\"s\": \"m\", \"x\": \"m\", \"z\": \"m\", \"tension\": \"N\", \"shear\": \"N\", "
+         "\"angle\": \"rad from vertical, positive toward +x\", \"curvature\": \"1/m\", \"strain\": \"-\", "
+         "\"force\": \"N\", \"buoy_draft\": \"m\"}\n";
+  out << "}\n";
+}
+
+void writeStaticCsv(std::ostream& out, const StaticResult& r) {
+  out << "node,s,x,z,tension,shear,angle_deg,curvature,strain,segment\n";
+  for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+    const NodeState& v = r.nodes[i];
+    out << i << ',' << csvNumber(v.s) << ',' << csvNumber(v.x) << ',' << csvNumber(v.z) << ','
+        << csvNumber(v.tension) << ',' << csvNumber(v.shear) << ',' << csvNumber(v.angle * kRadToDeg) << ','
+        << csvNumber(v.curvature) << ',' << csvNumber(v.strain) << ',' << v.segment << '\n';
+  }
+}
+
+std::string staticSummaryText(const Problem& problem, const StaticResult& r) {
+  std::ostringstream o;
+  const SolverSummary& sm = r.summary;
+  o << (problem.name.empty() ? std::string("static solution") : problem.name) << ": "
+    << (sm.converged ? "converged" : "NOT converged") << " after " << sm.iterations << " iterations (error "
+    << fmt("%.3g", sm.error) << ", relaxation " << fmt("%.3g", sm.relaxation) << ")";
+  if (!sm.message.empty()) o << " - " << sm.message;
+  o << "\n";
+  if (r.nodes.empty()) {
+    o << "  no nodes in the result\n";
+    return o.str();
+  }
+  const NodeState& top = r.nodes.back();
+  const auto mn = std::min_element(r.nodes.begin(), r.nodes.end(),
+                                   [](const NodeState& a, const NodeState& b) { return a.tension < b.tension; });
+  o << "  top tension    " << fmt("%12.1f", r.topTension()) << " N   at x = " << fmt("%.2f", top.x)
+    << " m, z = " << fmt("%.2f", top.z) << " m\n";
+  o << "  top force      x = " << fmt("%.1f", r.top_force_x) << " N, z = " << fmt("%.1f", r.top_force_z) << " N\n";
+  o << "  anchor force   x = " << fmt("%.1f", r.anchor_force_x) << " N, z = " << fmt("%.1f", r.anchor_force_z)
+    << " N\n";
+  o << "  min tension    " << fmt("%12.1f", mn->tension) << " N   at s = " << fmt("%.2f", mn->s) << " m (node "
+    << (mn - r.nodes.begin()) << ")\n";
+  if (problem.top.type == TopBoundary::Type::Buoy) o << "  buoy draft     " << fmt("%.3f", r.buoy_draft) << " m\n";
+  return o.str();
+}
+
+std::string staticTableText(const StaticResult& r, std::size_t stride) {
+  if (stride == 0) stride = 1;
+  std::ostringstream o;
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%6s %12s %12s %12s %14s\n", "node", "s [m]", "x [m]", "z [m]", "tension [N]");
+  o << buf;
+  const std::size_t n = r.nodes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i % stride != 0 && i + 1 != n) continue;
+    const NodeState& v = r.nodes[i];
+    std::snprintf(buf, sizeof buf, "%6zu %12.3f %12.3f %12.3f %14.2f\n", i, v.s, v.x, v.z, v.tension);
+    o << buf;
+  }
+  return o.str();
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics
