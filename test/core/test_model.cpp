@@ -1,0 +1,378 @@
+// Model: constitutive laws, seabed and current lookups, surface buoy hydrostatics and the
+// validation messages of Problem and StaticOptions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "mooring_dynamics/core/model.hpp"
+
+using namespace mooring_dynamics::core;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Closed-form values of O(1e4) computed with a handful of flops: relative rounding only.
+constexpr double kRel = 1e-12;
+// Central differences with step 1e-6 on smooth O(1) functions: truncation ~1e-12, rounding ~1e-10.
+constexpr double kFdTol = 1e-7;
+constexpr double kFdStep = 1e-6;
+
+::testing::AssertionResult contains(const std::string& text, const std::string& part) {
+  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "\"" << text << "\" does not contain \"" << part << "\"";
+}
+
+Material tableMaterial() {
+  Material m;
+  m.name = "rope";
+  // Slopes 1e5 N on [0, 0.01] and 2e5 N on [0.01, 0.03].
+  m.tension_strain = {{0.0, 0.0}, {0.01, 1000.0}, {0.03, 5000.0}};
+  return m;
+}
+
+/// A problem that validates: one chain segment, anchor on a flat bottom, top inside reach.
+Problem validProblem() {
+  Problem p;
+  p.environment.depth = 100.0;
+  Material m;
+  m.name = "chain";
+  m.EA = 1e8;
+  m.EI = 1.0;
+  m.mass = 50.0;
+  m.wet_weight = 400.0;
+  m.diameter = 0.1;
+  m.cdn = 2.4;
+  m.cdt = 1.15;
+  p.materials = {m};
+  Body b;
+  b.name = "float";
+  b.wet_weight = -500.0;
+  b.diameter = 0.5;
+  p.bodies = {b};
+  Segment s;
+  s.material = 0;
+  s.length = 150.0;
+  s.spacing = 1.0;
+  s.bodies = {{0, 75.0}};
+  p.segments = {s};
+  p.anchor_x = 0.0;
+  p.anchor_z = -100.0;
+  p.top.type = TopBoundary::Type::Position;
+  p.top.x = 100.0;
+  p.top.z = 0.0;
+  return p;
+}
+
+}  // namespace
+
+// --- Material --------------------------------------------------------------------------------
+
+TEST(Material, LinearEA) {
+  Material m;
+  m.EA = 2.5e6;
+  for (double eps : {-0.01, 0.0, 0.004, 0.3}) {
+    EXPECT_NEAR(m.tension(eps), 2.5e6 * eps, kRel * 2.5e6);
+    EXPECT_EQ(m.tensionSlope(eps), 2.5e6);
+  }
+  EXPECT_NEAR(m.strainAt(5000.0), 0.002, kRel);
+  EXPECT_NEAR(m.strainAt(m.tension(0.0123)), 0.0123, kRel);
+}
+
+TEST(Material, TensionStrainTableInterpolates) {
+  const Material m = tableMaterial();
+  EXPECT_NEAR(m.tension(0.0), 0.0, kRel * 5000.0);
+  EXPECT_NEAR(m.tension(0.005), 500.0, kRel * 5000.0);
+  EXPECT_NEAR(m.tension(0.02), 3000.0, kRel * 5000.0);   // 1000 + 0.01 * 2e5
+  EXPECT_NEAR(m.tension(0.03), 5000.0, kRel * 5000.0);
+  EXPECT_NEAR(m.tensionSlope(0.005), 1e5, kRel * 1e5);
+  EXPECT_NEAR(m.tensionSlope(0.02), 2e5, kRel * 2e5);
+  // The table is used, not EA (which is zero here).
+  EXPECT_EQ(m.EA, 0.0);
+}
+
+TEST(Material, TensionStrainTableExtrapolatesWithEndSlopes) {
+  const Material m = tableMaterial();
+  EXPECT_NEAR(m.tension(0.04), 7000.0, kRel * 5000.0);   // 5000 + 0.01 * 2e5
+  EXPECT_NEAR(m.tension(-0.01), -1000.0, kRel * 5000.0); // 0 - 0.01 * 1e5
+  EXPECT_NEAR(m.tensionSlope(0.1), 2e5, kRel * 2e5);
+  EXPECT_NEAR(m.tensionSlope(-0.1), 1e5, kRel * 1e5);
+}
+
+TEST(Material, StrainAtInvertsTheTable) {
+  const Material m = tableMaterial();
+  EXPECT_NEAR(m.strainAt(500.0), 0.005, kRel);
+  EXPECT_NEAR(m.strainAt(3000.0), 0.02, kRel);
+  EXPECT_NEAR(m.strainAt(7000.0), 0.04, kRel);    // extrapolated above
+  EXPECT_NEAR(m.strainAt(-1000.0), -0.01, kRel);  // extrapolated below
+  for (double eps = -0.02; eps <= 0.06; eps += 0.0037) {
+    EXPECT_NEAR(m.strainAt(m.tension(eps)), eps, kRel) << "eps " << eps;
+    // Slope consistent with the function (away from the breakpoints at 0.01 and 0.03).
+    if (std::abs(eps - 0.01) > 2 * kFdStep && std::abs(eps - 0.03) > 2 * kFdStep) {
+      const double fd = (m.tension(eps + kFdStep) - m.tension(eps - kFdStep)) / (2 * kFdStep);
+      EXPECT_NEAR(m.tensionSlope(eps), fd, kFdTol * 2e5) << "eps " << eps;
+    }
+  }
+}
+
+// --- Environment -----------------------------------------------------------------------------
+
+TEST(Environment, FlatSeabed) {
+  Environment env;
+  env.depth = 123.0;
+  for (double x : {-1000.0, 0.0, 55.5}) {
+    EXPECT_EQ(env.seabedElevation(x), -123.0);
+    EXPECT_EQ(env.seabedSlope(x), 0.0);
+  }
+}
+
+TEST(Environment, SeabedProfile) {
+  Environment env;
+  env.depth = 999.0;  // ignored when a profile is given
+  // Depth 100 m at x = 0 rising to 50 m at x = 100, then flat to 60 m deep at x = 200.
+  env.seabed.profile = {{0.0, 100.0}, {100.0, 50.0}, {200.0, 60.0}};
+  EXPECT_NEAR(env.seabedElevation(0.0), -100.0, kRel * 100);
+  EXPECT_NEAR(env.seabedElevation(50.0), -75.0, kRel * 100);
+  EXPECT_NEAR(env.seabedElevation(150.0), -55.0, kRel * 100);
+  EXPECT_NEAR(env.seabedSlope(50.0), 0.5, kRel);    // z_bot rises 50 m over 100 m
+  EXPECT_NEAR(env.seabedSlope(150.0), -0.1, kRel);  // z_bot falls 10 m over 100 m
+  // Beyond the ends the bottom is held flat at the end depths.
+  EXPECT_NEAR(env.seabedElevation(-30.0), -100.0, kRel * 100);
+  EXPECT_NEAR(env.seabedElevation(500.0), -60.0, kRel * 100);
+  EXPECT_EQ(env.seabedSlope(-30.0), 0.0);
+  EXPECT_EQ(env.seabedSlope(500.0), 0.0);
+  // The slope is the derivative of the elevation inside each piece.
+  for (double x : {10.0, 42.0, 99.0, 101.0, 177.0}) {
+    const double fd = (env.seabedElevation(x + kFdStep) - env.seabedElevation(x - kFdStep)) / (2 * kFdStep);
+    EXPECT_NEAR(env.seabedSlope(x), fd, kFdTol) << "x " << x;
+  }
+}
+
+TEST(Environment, NoCurrent) {
+  Environment env;
+  double ux = 1.0, uy = 1.0;
+  env.currentAt(-10.0, ux, uy);
+  EXPECT_EQ(ux, 0.0);
+  EXPECT_EQ(uy, 0.0);
+}
+
+TEST(Environment, CurrentProfileInterpolatesVelocityComponents) {
+  Environment env;
+  // 1 m/s east at 10 m, 0.5 m/s north at 50 m, 0.2 m/s west at 100 m.
+  env.current = {{10.0, 1.0, 0.0}, {50.0, 0.5, 0.5 * kPi}, {100.0, 0.2, kPi}};
+  constexpr double kTol = 1e-12;  // a few flops on O(1) values
+  double ux, uy;
+  // Halfway between 10 and 50 m: the mean of (1, 0) and (0, 0.5). Interpolating speed and
+  // direction instead would give 0.75 m/s toward 45 deg = (0.53, 0.53).
+  env.currentAt(-30.0, ux, uy);
+  EXPECT_NEAR(ux, 0.5, kTol);
+  EXPECT_NEAR(uy, 0.25, kTol);
+  // A quarter of the way from 50 to 100 m: (0, 0.5) + 0.25 * ((-0.2, 0) - (0, 0.5)).
+  env.currentAt(-62.5, ux, uy);
+  EXPECT_NEAR(ux, -0.05, kTol);
+  EXPECT_NEAR(uy, 0.375, kTol);
+  // At a table depth exactly.
+  env.currentAt(-50.0, ux, uy);
+  EXPECT_NEAR(ux, 0.0, kTol);
+  EXPECT_NEAR(uy, 0.5, kTol);
+  // Above the first point (and above the surface): the first point's velocity.
+  for (double z : {-5.0, 0.0, 3.0}) {
+    env.currentAt(z, ux, uy);
+    EXPECT_NEAR(ux, 1.0, kTol) << "z " << z;
+    EXPECT_NEAR(uy, 0.0, kTol) << "z " << z;
+  }
+  // Below the last point: the last point's velocity.
+  env.currentAt(-400.0, ux, uy);
+  EXPECT_NEAR(ux, -0.2, kTol);
+  EXPECT_NEAR(uy, 0.0, kTol);
+}
+
+TEST(Environment, CurrentDirectionIsCounterclockwiseFromEast) {
+  Environment env;
+  env.current = {{0.0, 2.0, kPi / 6.0}};
+  constexpr double kTol = 1e-12;
+  double ux, uy;
+  env.currentAt(-20.0, ux, uy);
+  EXPECT_NEAR(ux, 2.0 * std::sqrt(3.0) / 2.0, kTol);
+  EXPECT_NEAR(uy, 1.0, kTol);
+}
+
+// --- Surface buoy ----------------------------------------------------------------------------
+
+TEST(SurfaceBuoy, SphereVolumeAndArea) {
+  SurfaceBuoy b;
+  b.shape = SurfaceBuoy::Shape::Sphere;
+  b.diameter = 2.0;
+  const double R = 1.0;
+  const double full = 4.0 / 3.0 * kPi * R * R * R;
+  EXPECT_NEAR(b.totalHeight(), 2.0, kRel);
+  EXPECT_NEAR(b.submergedVolume(0.0), 0.0, kRel);
+  EXPECT_NEAR(b.submergedVolume(1.0), 0.5 * full, kRel * full);
+  EXPECT_NEAR(b.submergedVolume(2.0), full, kRel * full);
+  EXPECT_NEAR(b.submergedVolume(5.0), full, kRel * full);  // clamped: fully submerged
+  EXPECT_NEAR(b.submergedVolume(-1.0), 0.0, kRel);         // clamped: out of the water
+  // Cap of height R/2: pi h^2 (3R - h) / 3 = pi * 0.25 * 2.5 / 3.
+  EXPECT_NEAR(b.submergedVolume(0.5), kPi * 0.25 * 2.5 / 3.0, kRel);
+  // Waterplane at the equator is the great circle.
+  EXPECT_NEAR(b.submergedVolumeSlope(1.0), kPi * R * R, kRel);
+  // Projected area: half and full disc.
+  EXPECT_NEAR(b.submergedArea(1.0), 0.5 * kPi * R * R, kRel);
+  EXPECT_NEAR(b.submergedArea(2.0), kPi * R * R, kRel);
+  EXPECT_NEAR(b.submergedArea(0.0), 0.0, kRel);
+  EXPECT_NEAR(b.submergedAreaSlope(1.0), 2.0 * R, kRel);  // chord at the equator = diameter
+  for (double d : {0.1, 0.5, 0.9, 1.3, 1.9}) {
+    const double fv = (b.submergedVolume(d + kFdStep) - b.submergedVolume(d - kFdStep)) / (2 * kFdStep);
+    const double fa = (b.submergedArea(d + kFdStep) - b.submergedArea(d - kFdStep)) / (2 * kFdStep);
+    EXPECT_NEAR(b.submergedVolumeSlope(d), fv, kFdTol) << "d " << d;
+    EXPECT_NEAR(b.submergedAreaSlope(d), fa, kFdTol) << "d " << d;
+  }
+  // No change outside [0, height].
+  EXPECT_EQ(b.submergedVolumeSlope(-0.5), 0.0);
+  EXPECT_EQ(b.submergedVolumeSlope(2.5), 0.0);
+  EXPECT_EQ(b.submergedAreaSlope(2.5), 0.0);
+}
+
+TEST(SurfaceBuoy, CylinderIsLinearInDraft) {
+  SurfaceBuoy b;
+  b.shape = SurfaceBuoy::Shape::Cylinder;
+  b.diameter = 2.0;
+  b.height = 3.0;
+  const double A = kPi;  // pi R^2 with R = 1
+  EXPECT_NEAR(b.totalHeight(), 3.0, kRel);
+  for (double d : {0.0, 0.7, 1.5, 3.0}) {
+    EXPECT_NEAR(b.submergedVolume(d), A * d, kRel * 10);
+    EXPECT_NEAR(b.submergedArea(d), 2.0 * d, kRel * 10);
+  }
+  EXPECT_NEAR(b.submergedVolume(4.0), 3.0 * A, kRel * 10);  // clamped to the height
+  EXPECT_NEAR(b.submergedArea(4.0), 6.0, kRel * 10);
+  EXPECT_NEAR(b.submergedVolume(-1.0), 0.0, kRel);
+  for (double d : {0.2, 1.5, 2.9}) {
+    EXPECT_NEAR(b.submergedVolumeSlope(d), A, kRel * 10);
+    EXPECT_NEAR(b.submergedAreaSlope(d), 2.0, kRel * 10);
+    const double fv = (b.submergedVolume(d + kFdStep) - b.submergedVolume(d - kFdStep)) / (2 * kFdStep);
+    EXPECT_NEAR(b.submergedVolumeSlope(d), fv, kFdTol);
+  }
+  EXPECT_EQ(b.submergedVolumeSlope(3.5), 0.0);
+}
+
+// --- Validation --------------------------------------------------------------------------------
+
+TEST(Validation, ValidProblemHasNoMessage) {
+  EXPECT_EQ(validProblem().validate(), "");
+  EXPECT_EQ(StaticOptions().validate(), "");
+}
+
+TEST(Validation, NegativeEANamesFieldAndValue) {
+  Problem p = validProblem();
+  p.materials[0].EA = -5.0;
+  const std::string e = p.validate();
+  EXPECT_TRUE(contains(e, "materials.chain.EA"));
+  EXPECT_TRUE(contains(e, "-5"));
+}
+
+TEST(Validation, TableMaterialDoesNotNeedEA) {
+  Problem p = validProblem();
+  p.materials[0].EA = 0.0;
+  p.materials[0].tension_strain = {{0.0, 0.0}, {0.01, 1e6}};
+  EXPECT_EQ(p.validate(), "");
+  p.materials[0].tension_strain = {{0.0, 0.0}, {0.01, 1e6}, {0.005, 2e6}};
+  const std::string e = p.validate();
+  EXPECT_TRUE(contains(e, "materials.chain.tension_strain[2]"));
+  EXPECT_TRUE(contains(e, "0.005"));
+}
+
+TEST(Validation, ZeroBendingStiffnessIsRejected) {
+  Problem p = validProblem();
+  p.materials[0].EI = 0.0;
+  EXPECT_TRUE(contains(p.validate(), "materials.chain.EI"));
+}
+
+TEST(Validation, TopBeyondReach) {
+  Problem p = validProblem();
+  // 150 m at max_strain 0.2 reaches 180 m; the top is 200 m away horizontally.
+  p.top.x = 200.0;
+  const std::string e = p.validate();
+  EXPECT_TRUE(contains(e, "top.position"));
+  EXPECT_TRUE(contains(e, "reach"));
+  EXPECT_TRUE(contains(e, "200"));
+  // 170 m away is within reach.
+  p.top.x = std::sqrt(170.0 * 170.0 - 100.0 * 100.0);
+  EXPECT_EQ(p.validate(), "");
+}
+
+TEST(Validation, SegmentAndPlacementFields) {
+  {
+    Problem p = validProblem();
+    p.segments[0].length = -3.0;
+    const std::string e = p.validate();
+    EXPECT_TRUE(contains(e, "line[0].length"));
+    EXPECT_TRUE(contains(e, "-3"));
+  }
+  {
+    Problem p = validProblem();
+    p.segments[0].bodies[0].at = 151.0;
+    const std::string e = p.validate();
+    EXPECT_TRUE(contains(e, "line[0].bodies[0].at"));
+    EXPECT_TRUE(contains(e, "151"));
+  }
+  {
+    Problem p = validProblem();
+    p.segments[0].material = 4;
+    EXPECT_TRUE(contains(p.validate(), "line[0].material"));
+  }
+  {
+    Problem p = validProblem();
+    p.segments[0].bodies[0].body = 3;
+    EXPECT_TRUE(contains(p.validate(), "line[0].bodies[0].body"));
+  }
+}
+
+TEST(Validation, EnvironmentAndAnchorFields) {
+  {
+    Problem p = validProblem();
+    p.anchor_z = -120.0;  // 20 m under the 100 m deep flat bottom
+    const std::string e = p.validate();
+    EXPECT_TRUE(contains(e, "anchor.z"));
+    EXPECT_TRUE(contains(e, "-120"));
+  }
+  {
+    Problem p = validProblem();
+    p.environment.current = {{0.0, 1.0, 0.0}, {-4.0, 1.0, 0.0}};
+    const std::string e = p.validate();
+    EXPECT_TRUE(contains(e, "environment.current[1].depth"));
+    EXPECT_TRUE(contains(e, "-4"));
+  }
+  {
+    Problem p = validProblem();
+    p.environment.water_density = 0.0;
+    EXPECT_TRUE(contains(p.validate(), "environment.water_density"));
+  }
+}
+
+TEST(Validation, SolverOptions) {
+  {
+    Problem p = validProblem();
+    p.static_options.relaxation = 0.0;
+    const std::string e = p.validate();
+    EXPECT_TRUE(contains(e, "solver.static.relaxation"));
+    EXPECT_TRUE(contains(e, "= 0"));
+  }
+  StaticOptions o;
+  o.relaxation = 1.5;
+  EXPECT_TRUE(contains(o.validate(), "solver.static.relaxation"));
+  EXPECT_TRUE(contains(o.validate(), "1.5"));
+  o = StaticOptions();
+  o.tolerance = -1e-3;
+  EXPECT_TRUE(contains(o.validate(), "solver.static.tolerance"));
+  EXPECT_TRUE(contains(o.validate(), "-0.001"));
+  o = StaticOptions();
+  o.max_iterations = 0;
+  EXPECT_TRUE(contains(o.validate(), "solver.static.max_iterations"));
+  o = StaticOptions();
+  o.R2 = 1.0;  // must exceed 1
+  EXPECT_TRUE(contains(o.validate(), "solver.static.R2"));
+  o = StaticOptions();
+  o.R1 = 1.01;  // must exceed R2 = 1.02
+  EXPECT_TRUE(contains(o.validate(), "solver.static.R1"));
+  EXPECT_TRUE(contains(o.validate(), "1.01"));
+}

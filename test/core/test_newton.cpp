@@ -1,0 +1,348 @@
+// solveNewton (paper section 6, eqs. 38-41) on small systems with known behaviour: a banded
+// nonlinear system with a known root, the adaptive relaxation rule checked step by step from the
+// recorded iterates, the clamps of mu to [mu0/1000, mu0], and the failure reports.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "mooring_dynamics/core/newton.hpp"
+
+using namespace mooring_dynamics::core;
+
+namespace {
+
+::testing::AssertionResult contains(const std::string& text, const std::string& part) {
+  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "\"" << text << "\" does not contain \"" << part << "\"";
+}
+
+/// x_i^3 + x_i - b_i + c (x_{i-1} + x_{i+1}) = 0 with b chosen so that `root` solves it.
+/// Tridiagonal Jacobian: 3 x_i^2 + 1 on the diagonal, c beside it. Records every iterate.
+class CubicChain : public NewtonSystem {
+ public:
+  static constexpr double c = 0.1;
+  explicit CubicChain(const Eigen::VectorXd& root) : b_(root.size()) {
+    for (int i = 0; i < root.size(); ++i) b_[i] = std::pow(root[i], 3) + root[i] + c * neighbours(root, i);
+  }
+  int size() const override { return static_cast<int>(b_.size()); }
+  int lowerBandwidth() const override { return 1; }
+  int upperBandwidth() const override { return 1; }
+  void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override {
+    iterates.push_back(Y);
+    for (int i = 0; i < size(); ++i) R[i] = std::pow(Y[i], 3) + Y[i] - b_[i] + c * neighbours(Y, i);
+    if (!J) return;
+    for (int i = 0; i < size(); ++i) {
+      J->at(i, i) = 3.0 * Y[i] * Y[i] + 1.0;
+      if (i > 0) J->at(i, i - 1) = c;
+      if (i + 1 < size()) J->at(i, i + 1) = c;
+    }
+  }
+  double scale(int) const override { return 1.0; }
+  std::string describe(int i) const override { return "x[" + std::to_string(i) + "]"; }
+  std::vector<Eigen::VectorXd> iterates;
+
+ private:
+  double neighbours(const Eigen::VectorXd& x, int i) const {
+    return (i > 0 ? x[i - 1] : 0.0) + (i + 1 < x.size() ? x[i + 1] : 0.0);
+  }
+  Eigen::VectorXd b_;
+};
+
+/// One unknown: R = f(x), J = f'(x). Records every iterate.
+class Scalar : public NewtonSystem {
+ public:
+  Scalar(std::function<double(double)> f, std::function<double(double)> df, double chi = 1.0)
+      : f_(std::move(f)), df_(std::move(df)), chi_(chi) {}
+  int size() const override { return 1; }
+  int lowerBandwidth() const override { return 0; }
+  int upperBandwidth() const override { return 0; }
+  void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override {
+    iterates.push_back(Y[0]);
+    R[0] = f_(Y[0]);
+    if (J) J->at(0, 0) = df_(Y[0]);
+  }
+  double scale(int) const override { return chi_; }
+  std::string describe(int) const override { return "the scalar unknown"; }
+  /// The Newton update at x, computed as the 1x1 LU solve does: -R / J.
+  double update(double x) const { return -f_(x) / df_(x); }
+  std::vector<double> iterates;
+
+ private:
+  std::function<double(double)> f_, df_;
+  double chi_;
+};
+
+Scalar atanSystem() {
+  return Scalar([](double x) { return std::atan(x); }, [](double x) { return 1.0 / (1.0 + x * x); });
+}
+
+/// Relaxation factors actually applied, recovered from consecutive iterates: mu_k = dx_k / dY_k
+/// (NaN where the update is exactly zero and mu cannot be observed).
+std::vector<double> appliedRelaxation(const Scalar& s, double final_x) {
+  std::vector<double> x = s.iterates;
+  x.push_back(final_x);
+  std::vector<double> mu;
+  for (std::size_t k = 0; k + 1 < x.size(); ++k) {
+    const double dY = s.update(x[k]);
+    mu.push_back(dY != 0.0 ? (x[k + 1] - x[k]) / dY : std::nan(""));
+  }
+  return mu;
+}
+
+// mu recovered from iterates of magnitude <= ~10 and updates >= ~1e-9: rounding only.
+constexpr double kMuTol = 1e-6;
+
+}  // namespace
+
+TEST(Newton, BandedCubicSystemConvergesQuadraticallyToTheRoot) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  Eigen::VectorXd root(30);
+  for (int i = 0; i < root.size(); ++i) root[i] = u(rng);
+  for (const bool adaptive : {false, true}) {
+    CubicChain sys(root);
+    Eigen::VectorXd Y = Eigen::VectorXd::Zero(root.size());
+    NewtonOptions o;
+    o.tolerance = 1e-12;
+    o.adaptive = adaptive;
+    const SolverSummary s = solveNewton(sys, Y, o);
+    ASSERT_TRUE(s.converged) << s.message;
+    constexpr double kRootTol = 1e-11;  // last update < 1e-12 per unknown and shrinking quadratically
+    EXPECT_LT((Y - root).cwiseAbs().maxCoeff(), kRootTol);
+    // Newton from 0 on this well-conditioned system: a handful of iterations, not dozens.
+    EXPECT_LE(s.iterations, 10);
+    EXPECT_EQ(static_cast<std::size_t>(s.iterations), sys.iterates.size());
+    EXPECT_LT(s.error, o.tolerance);
+    EXPECT_EQ(s.relaxation, 1.0);
+    EXPECT_TRUE(contains(s.message, "converged"));
+    // sigma_k = mean |Y_{k+1} - Y_k| (mu = 1). Near the root it falls quadratically:
+    // sigma_{k+1} <= C sigma_k^2, C ~ max|f''| / (2 min|f'|) = 9 / 2 for |x| <= 1.5.
+    std::vector<double> sigma;
+    for (std::size_t k = 0; k + 1 < sys.iterates.size(); ++k)
+      sigma.push_back((sys.iterates[k + 1] - sys.iterates[k]).cwiseAbs().mean());
+    int quadratic_steps = 0;
+    for (std::size_t k = 0; k + 1 < sigma.size(); ++k) {
+      if (sigma[k] > 1e-2 || sigma[k + 1] < 1e-14) continue;  // not yet near the root / at round-off
+      EXPECT_LE(sigma[k + 1], 10.0 * sigma[k] * sigma[k]) << "step " << k;
+      ++quadratic_steps;
+    }
+    EXPECT_GE(quadratic_steps, 1);
+  }
+}
+
+TEST(Newton, SigmaIsTheScaledMeanUpdate) {
+  // Linear R = Y - c from Y = 0: the first update is c exactly, so sigma (eq. 39) is
+  // (|c0| / chi0 + |c1| / chi1) / 2 = (3 / 0.5 + 4 / 8) / 2 = 3.25.
+  class Linear : public NewtonSystem {
+   public:
+    int size() const override { return 2; }
+    int lowerBandwidth() const override { return 0; }
+    int upperBandwidth() const override { return 0; }
+    void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override {
+      R[0] = Y[0] + 3.0;
+      R[1] = Y[1] - 4.0;
+      if (J) J->at(0, 0) = J->at(1, 1) = 1.0;
+    }
+    double scale(int i) const override { return i == 0 ? 0.5 : 8.0; }
+    std::string describe(int i) const override { return "y" + std::to_string(i); }
+  } sys;
+  Eigen::VectorXd Y = Eigen::VectorXd::Zero(2);
+  NewtonOptions o;
+  o.max_iterations = 1;
+  const SolverSummary s = solveNewton(sys, Y, o);
+  EXPECT_FALSE(s.converged);
+  EXPECT_DOUBLE_EQ(s.error, 3.25);
+  EXPECT_DOUBLE_EQ(Y[0], -3.0);
+  EXPECT_DOUBLE_EQ(Y[1], 4.0);
+  // The largest scaled update is y0 (3 / 0.5 = 6 against 0.5).
+  EXPECT_TRUE(contains(s.message, "y0"));
+}
+
+TEST(Newton, PlainNewtonDivergesOnAtanAdaptiveRelaxationConverges) {
+  // Plain Newton on atan(x) = 0 diverges for |x0| > 1.3917 (the iterates alternate in sign and
+  // grow). From 1.45 the adaptive rule cuts mu fast enough (mu / 1.1 per growing step) to recover.
+  // (From x0 = 2 the iterates blow up within ~10 steps, too fast for R1 = 1.1 to catch.)
+  {
+    Scalar sys = atanSystem();
+    Eigen::VectorXd Y(1);
+    Y[0] = 1.45;
+    NewtonOptions o;
+    o.adaptive = false;
+    const SolverSummary s = solveNewton(sys, Y, o);
+    EXPECT_FALSE(s.converged);
+    EXPECT_FALSE(s.message.empty());
+    // It genuinely diverged: the iterates grew in magnitude step after step.
+    ASSERT_GE(sys.iterates.size(), 4u);
+    for (std::size_t k = 0; k + 1 < 4; ++k) EXPECT_GT(std::abs(sys.iterates[k + 1]), std::abs(sys.iterates[k]));
+  }
+  {
+    Scalar sys = atanSystem();
+    Eigen::VectorXd Y(1);
+    Y[0] = 1.45;
+    NewtonOptions o;  // adaptive, R1 = 1.1, R2 = 1.02, mu0 = 1
+    const SolverSummary s = solveNewton(sys, Y, o);
+    ASSERT_TRUE(s.converged) << s.message;
+    constexpr double kRootTol = 1e-9;  // the last update was below the tolerance 1e-9
+    EXPECT_NEAR(Y[0], 0.0, kRootTol);
+    EXPECT_LE(s.iterations, 30);
+    // The rule had to act: at least one step was taken with mu < mu0.
+    const std::vector<double> mu = appliedRelaxation(sys, Y[0]);
+    double smallest = 1.0;
+    for (double m : mu)
+      if (!std::isnan(m)) smallest = std::min(smallest, m);
+    EXPECT_LT(smallest, 0.95);
+  }
+}
+
+TEST(Newton, AdaptiveRuleFollowsEquations40And41) {
+  // Replay the rule independently: mu_0 = mu0; then mu_k = mu_{k-1} / R1 when sigma_k > sigma_{k-1}
+  // (eq. 40), mu_{k-1} * R2 otherwise (eq. 41), clamped to [mu0 / 1000, mu0].
+  struct Case { double x0, mu0, R1, R2; };
+  for (const Case c : {Case{1.45, 1.0, 1.1, 1.02}, Case{1.42, 1.0, 1.1, 1.02}, Case{1.6, 1.0, 1.3, 1.05},
+                       Case{1.5, 0.95, 1.3, 1.05}, Case{1.6, 1.0, 1.5, 1.1}}) {
+    const double x0 = c.x0;
+    Scalar sys = atanSystem();
+    Eigen::VectorXd Y(1);
+    Y[0] = x0;
+    NewtonOptions o;
+    o.mu0 = c.mu0;
+    o.R1 = c.R1;
+    o.R2 = c.R2;
+    o.max_iterations = 60;
+    const SolverSummary s = solveNewton(sys, Y, o);
+    const std::vector<double> mu = appliedRelaxation(sys, Y[0]);
+    ASSERT_EQ(mu.size(), sys.iterates.size());
+    ASSERT_GE(mu.size(), 3u);
+    double expected = o.mu0;
+    bool reduced = false, increased = false;
+    for (std::size_t k = 0; k < mu.size(); ++k) {
+      if (k > 0) {
+        const double sk = std::abs(sys.update(sys.iterates[k]));
+        const double sp = std::abs(sys.update(sys.iterates[k - 1]));
+        if (sk > sp) { expected /= o.R1; reduced = true; }
+        else {
+          expected *= o.R2;
+          if (expected < o.mu0) increased = true;  // eq. 41 visible below the cap
+        }
+        expected = std::min(std::max(expected, o.mu0 / 1000.0), o.mu0);
+      }
+      if (!std::isnan(mu[k])) {
+        EXPECT_NEAR(mu[k], expected, kMuTol) << "x0 " << x0 << " iteration " << k;
+      }
+    }
+    EXPECT_NEAR(s.relaxation, expected, kMuTol);
+    EXPECT_TRUE(reduced) << "x0 " << x0 << ": the test never exercised eq. 40";
+    EXPECT_TRUE(increased) << "x0 " << x0 << ": the test never exercised eq. 41 below the cap";
+    EXPECT_TRUE(s.converged) << s.message;
+  }
+}
+
+TEST(Newton, RelaxationNeverExceedsMu0) {
+  // Linear R = x - 1 from x = 2 with mu0 = 0.5: sigma halves every step, so eq. 41 keeps asking
+  // for a larger mu, which the cap holds at 0.5. Then x_k = 1 + 2^-k and sigma_k = 2^-k exactly:
+  // the first sigma below 1e-9 is 2^-30, at the 31st iteration.
+  for (const bool adaptive : {true, false}) {
+    Scalar sys([](double x) { return x - 1.0; }, [](double) { return 1.0; });
+    Eigen::VectorXd Y(1);
+    Y[0] = 2.0;
+    NewtonOptions o;
+    o.mu0 = 0.5;
+    o.adaptive = adaptive;
+    const SolverSummary s = solveNewton(sys, Y, o);
+    ASSERT_TRUE(s.converged);
+    EXPECT_EQ(s.iterations, 31);
+    EXPECT_DOUBLE_EQ(s.error, std::ldexp(1.0, -30));
+    EXPECT_DOUBLE_EQ(s.relaxation, 0.5);
+    EXPECT_DOUBLE_EQ(Y[0], 1.0 + std::ldexp(1.0, -31));
+    for (double m : appliedRelaxation(sys, Y[0])) EXPECT_DOUBLE_EQ(m, 0.5);
+  }
+}
+
+TEST(Newton, RelaxationFloorIsMu0Over1000AndNonConvergenceIsReported) {
+  // R = 1/x has its root at infinity: the Newton update is +x, so sigma grows every step and
+  // eq. 40 divides mu by R1 = 1.1 each time, down to the floor mu0/1000 after 73 steps
+  // (1.1^72 < 1000 < 1.1^73), where it stays.
+  Scalar sys([](double x) { return 1.0 / x; }, [](double x) { return -1.0 / (x * x); });
+  Eigen::VectorXd Y(1);
+  Y[0] = 1.0;
+  NewtonOptions o;
+  o.max_iterations = 100;
+  SolverSummary s;
+  ASSERT_NO_THROW(s = solveNewton(sys, Y, o));
+  EXPECT_FALSE(s.converged);
+  EXPECT_EQ(s.iterations, 100);
+  EXPECT_DOUBLE_EQ(s.relaxation, 1e-3);
+  const std::vector<double> mu = appliedRelaxation(sys, Y[0]);
+  ASSERT_EQ(mu.size(), 100u);
+  EXPECT_GT(mu[72], 1e-3 * (1.0 + 1e-9));
+  for (std::size_t k = 73; k < mu.size(); ++k) EXPECT_NEAR(mu[k], 1e-3, 1e-3 * kMuTol) << "iteration " << k;
+  EXPECT_TRUE(contains(s.message, "did not converge"));
+  EXPECT_TRUE(contains(s.message, "100"));
+  EXPECT_TRUE(contains(s.message, "the scalar unknown"));
+  // Y holds the last iterate, not the initial guess.
+  EXPECT_GT(Y[0], 1.0);
+}
+
+TEST(Newton, IterationLimitOnAConvergentSystem) {
+  Eigen::VectorXd root = Eigen::VectorXd::Constant(8, 0.7);
+  CubicChain sys(root);
+  Eigen::VectorXd Y = Eigen::VectorXd::Zero(8);
+  NewtonOptions o;
+  o.max_iterations = 2;
+  SolverSummary s;
+  ASSERT_NO_THROW(s = solveNewton(sys, Y, o));
+  EXPECT_FALSE(s.converged);
+  EXPECT_EQ(s.iterations, 2);
+  EXPECT_GT(s.error, o.tolerance);
+  EXPECT_TRUE(contains(s.message, "did not converge"));
+  EXPECT_TRUE(contains(s.message, "x["));
+}
+
+TEST(Newton, SingularJacobianNamesTheUnknown) {
+  // Unknown 2 of 4 appears in no residual: its Jacobian column is zero, so elimination meets an
+  // exactly zero pivot in column 2.
+  class Decoupled : public NewtonSystem {
+   public:
+    int size() const override { return 4; }
+    int lowerBandwidth() const override { return 1; }
+    int upperBandwidth() const override { return 1; }
+    void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override {
+      R[0] = Y[0] - 1.0;
+      R[1] = Y[1] + Y[0];
+      R[2] = Y[3] - Y[1];
+      R[3] = Y[3] - 2.0;
+      if (!J) return;
+      J->at(0, 0) = 1.0;
+      J->at(1, 1) = 1.0;
+      J->at(1, 0) = 1.0;
+      J->at(2, 3) = 1.0;
+      J->at(2, 1) = -1.0;
+      J->at(3, 3) = 1.0;
+    }
+    double scale(int) const override { return 1.0; }
+    std::string describe(int i) const override { return "unknown #" + std::to_string(i) + " (tension)"; }
+  } sys;
+  Eigen::VectorXd Y = Eigen::VectorXd::Zero(4);
+  SolverSummary s;
+  ASSERT_NO_THROW(s = solveNewton(sys, Y, NewtonOptions()));
+  EXPECT_FALSE(s.converged);
+  EXPECT_EQ(s.iterations, 0);
+  EXPECT_TRUE(contains(s.message, "singular"));
+  EXPECT_TRUE(contains(s.message, "unknown #2 (tension)"));
+  EXPECT_EQ(Y, Eigen::VectorXd::Zero(4));  // no update was applied
+}
+
+TEST(Newton, NonFiniteResidualIsReported) {
+  Scalar sys([](double x) { return std::log(x); }, [](double x) { return 1.0 / x; });
+  Eigen::VectorXd Y(1);
+  Y[0] = -1.0;
+  SolverSummary s;
+  ASSERT_NO_THROW(s = solveNewton(sys, Y, NewtonOptions()));
+  EXPECT_FALSE(s.converged);
+  EXPECT_EQ(s.iterations, 0);
+  EXPECT_TRUE(contains(s.message, "not finite"));
+}
