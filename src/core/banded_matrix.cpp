@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <stdexcept>
+#include <string>
 
 extern "C" {
 void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab,
@@ -15,11 +16,12 @@ void dgbtrs_(const char* trans, const int* n, const int* kl, const int* ku, cons
 namespace mooring_dynamics {
 namespace core {
 
-BandedMatrix::BandedMatrix(int n, int kl, int ku)
-    : n_(n), kl_(kl), ku_(ku), ldab_(2 * kl + ku + 1),
-      ab_(static_cast<std::size_t>(ldab_) * static_cast<std::size_t>(n), 0.0),
-      ipiv_(static_cast<std::size_t>(n), 0) {
-  if (n <= 0 || kl < 0 || ku < 0) throw std::invalid_argument("BandedMatrix: bad dimensions");
+BandedMatrix::BandedMatrix(int n, int kl, int ku) : n_(n), kl_(kl), ku_(ku), ldab_(2 * kl + ku + 1) {
+  if (n <= 0 || kl < 0 || ku < 0)
+    throw std::invalid_argument("BandedMatrix: n = " + std::to_string(n) + ", kl = " + std::to_string(kl) +
+                                ", ku = " + std::to_string(ku) + ": need n > 0, kl >= 0, ku >= 0");
+  ab_.assign(static_cast<std::size_t>(ldab_) * static_cast<std::size_t>(n), 0.0);
+  ipiv_.assign(static_cast<std::size_t>(n), 0);
 }
 
 void BandedMatrix::setZero() {

@@ -60,6 +60,7 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       summary.message = "Newton update is not finite at iteration " + std::to_string(k);
       return summary;
     }
+    system.conditionStep(Y, dY);
     // Error measure and adaptive relaxation (eqs. 39-41).
     const double sigma = scaledUpdate(system, dY, &worst);
     if (options.adaptive && k > 0) {
@@ -71,7 +72,7 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
     if (std::getenv("MD_NEWTON_TRACE"))
       std::fprintf(stderr, "newton %d sigma %.3e mu %.3e worst %s dY %.3e\n", k, sigma, mu,
                    system.describe(worst).c_str(), dY[worst]);
-    Y += mu * dY;  // eq. 38
+    Y += std::min(mu, system.stepLimit(dY)) * dY;  // eq. 38
     summary.iterations = k + 1;
     summary.error = sigma;
     summary.relaxation = mu;

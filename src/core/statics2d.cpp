@@ -81,14 +81,14 @@ void StaticSystem2D::evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, Band
     if (J) {
       AD12 y[2 * N], r[N];
       for (int k = 0; k < 2 * N; ++k) y[k] = AD12(Y[N * j + k], 2 * N, k);
-      intervalResidual(problem_, iv, ma, mb, y, y + N, r);
+      intervalResidual(problem_, iv, ma, mb, y, y + N, r, capped_);
       for (int q = 0; q < N; ++q) {
         R[row + q] = r[q].value();
         for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = r[q].derivatives()[k];
       }
     } else {
       double r[N];
-      intervalResidual(problem_, iv, ma, mb, Y.data() + N * j, Y.data() + N * (j + 1), r);
+      intervalResidual(problem_, iv, ma, mb, Y.data() + N * j, Y.data() + N * (j + 1), r, capped_);
       for (int q = 0; q < N; ++q) R[row + q] = r[q];
     }
   }
@@ -128,6 +128,40 @@ void StaticSystem2D::evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, Band
       for (int k = 0; k < N; ++k)
         if (r[q].derivatives()[k] != 0.0) J->at(row + q, top + k) = r[q].derivatives()[k];
   }
+}
+
+double StaticSystem2D::stepLimit(const Eigen::VectorXd& dY) const {
+  // Newton's linearization of the rotation terms (sin, cos of phi) is trusted up to about half a
+  // radian; a larger predicted turn is scaled down with the whole update.
+  constexpr double kMaxAngleStep = 0.5;  // [rad]
+  double largest = 0.0;
+  for (Eigen::Index i = PHI; i < dY.size(); i += N) largest = std::max(largest, std::abs(dY[i]));
+  return largest > kMaxAngleStep ? kMaxAngleStep / largest : 1.0;
+}
+
+void StaticSystem2D::conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY) const {
+  // Newton sees no seabed under a node that is above it, and may send it far below, where the
+  // stiff foundation throws it back up: the iteration then oscillates through the contact.
+  const Environment& env = problem_.environment;
+  for (std::size_t j = 0; j < mesh_.nodes.size(); ++j) {
+    const Eigen::Index iz = static_cast<Eigen::Index>(N * j + Z);
+    const double w = std::max(problem_.materials[mesh_.nodes[j].material].wet_weight, 0.0);
+    const double rest = env.seabedElevation(Y[iz - 1]) - w / env.seabed.stiffness;
+    if (Y[iz] >= rest && Y[iz] + dY[iz] < rest) dY[iz] = rest - Y[iz];
+  }
+}
+
+double StaticSystem2D::maxSeabedLoadRatio(const Eigen::VectorXd& Y) const {
+  double ratio = 0.0;
+  for (std::size_t j = 0; j < mesh_.intervals.size(); ++j) {
+    const MeshInterval& iv = mesh_.intervals[j];
+    const Material& m = problem_.materials[iv.material];
+    if (iv.h <= 0.0 || m.wet_weight <= 0.0) continue;
+    double Fa, Fb;
+    seabedForces(problem_.environment, m, Y.data() + N * j, Y.data() + N * (j + 1), false, Fa, Fb);
+    ratio = std::max(ratio, 0.5 * (Fa + Fb) / m.wet_weight);
+  }
+  return ratio;
 }
 
 // --- Result extraction ---------------------------------------------------------------------------
@@ -181,7 +215,19 @@ StaticResult solveStatic(const Problem& problem, const StaticOptions& options) {
   const Shot shot = catenaryShot(problem, mesh);           // initial guess: generalized catenary
   Eigen::VectorXd Y = stateFromShot(mesh, shot);
   StaticSystem2D system(problem, mesh);
-  const SolverSummary summary = solveNewton(system, Y, newtonOptions(options));  // Newton relaxation
+  // Stage 1: the seabed as a plain spring: smooth equations, Newton converges quadratically.
+  system.setSeabedCap(false);
+  SolverSummary summary = solveNewton(system, Y, newtonOptions(options));
+  // Stage 2 (seabed.static_cap): the paper's capped foundation, started from the smooth solution,
+  // when some stretch of line carries more than its wet weight. The cap's value enters the
+  // residual; its Jacobian keeps the spring's slope (a capped stretch has none, and the box
+  // scheme's odd-even mode along grounded line would then have no stiffness at all).
+  if (problem.environment.seabed.static_cap && summary.converged && system.maxSeabedLoadRatio(Y) > 1.0) {
+    system.setSeabedCap(true);
+    const int stage1 = summary.iterations;
+    summary = solveNewton(system, Y, newtonOptions(options));
+    summary.iterations += stage1;
+  }
 
   StaticResult res = staticResultFromState(problem, mesh, Y);
   res.summary = summary;

@@ -40,16 +40,33 @@ S linearized(double f, double df, const S& x) {
   return f + df * (x - value(x));
 }
 
-/// Seabed reaction per unit length, eq. 35 with the static cap F_bot <= w_o [N/m] (acts along +z).
+/// Seabed reaction per unit length at a node, eq. 35 without the cap: k (z_bot(x) - z) where
+/// the node is below the bottom, else 0 [N/m] (acts along +z).
 template <class S>
-S seabedForce(const Environment& env, const Material& m, const S& x, const S& z) {
+S seabedSpring(const Environment& env, const S& x, const S& z) {
   const double zb = env.seabedElevation(value(x));
   if (!(value(z) < zb)) return S(0.0) + 0.0 * z;
-  const double cap = std::max(m.wet_weight, 0.0);
   const S zbS = linearized(zb, env.seabedSlope(value(x)), x);
-  const S F = env.seabed.stiffness * (zbS - z);
-  if (value(F) > cap) return S(cap) + 0.0 * z;  // strict: at the cap keep the spring's slope
-  return F;
+  return env.seabed.stiffness * (zbS - z);
+}
+
+/// Seabed reactions at the two nodes of a half-grid interval of material m, with the static cap
+/// of eq. 35 (F_bot <= w_o) applied to the interval's mean reaction: when it exceeds w_o both
+/// nodal reactions are scaled down proportionally. Capping each node separately would cap the
+/// box scheme's odd-even mode (nodal elevations alternating about the rest penetration along
+/// grounded line) and remove the only stiffness that mode has, and Newton then diverges.
+template <class S>
+void seabedForces(const Environment& env, const Material& m, const S* Ya, const S* Yb, bool capped, S& Fa, S& Fb) {
+  Fa = seabedSpring(env, Ya[X], Ya[Z]);
+  Fb = seabedSpring(env, Yb[X], Yb[Z]);
+  const double cap = std::max(m.wet_weight, 0.0);
+  const S mean = 0.5 * (Fa + Fb);
+  if (capped && value(mean) > cap) {
+    const double factor = cap / value(mean);
+    // Value capped; slope kept from the spring (modified Newton), see the note above.
+    Fa = Fa + value(Fa) * (factor - 1.0);
+    Fb = Fb + value(Fb) * (factor - 1.0);
+  }
 }
 
 /// Horizontal current component along +x at elevation z [m/s], in the scalar type.
@@ -67,16 +84,17 @@ S currentX(const Environment& env, const S& z) {
 }
 
 /// Distributed static load per unit unstretched length at a node, resolved on the local frame:
-/// f1 along t, f2 along n (the F terms of eq. 10 for the static case).
+/// f1 along t, f2 along n (the F terms of eq. 10 for the static case). Fbot is the seabed
+/// reaction acting on this stretch of line [N/m].
 template <class S>
-void distributedLoad(const Environment& env, const Material& m, const S* Y, S& f1, S& f2) {
+void distributedLoad(const Environment& env, const Material& m, const S* Y, const S& Fbot, S& f1, S& f2) {
   using std::cos;
   using std::sin;
   using std::sqrt;
   const S& eps = Y[EPS];
   const S& phi = Y[PHI];
   const S c = cos(phi), s = sin(phi);
-  const S w = m.wet_weight - seabedForce(env, m, Y[X], Y[Z]);  // wet weight less the seabed (5.3)
+  const S w = m.wet_weight - Fbot;  // wet weight less the seabed reaction (5.3)
   const S U = currentX(env, Y[Z]);
   const S ur = -U * s;  // tangential velocity of the cable relative to the water
   const S vr = -U * c;  // normal velocity of the cable relative to the water
@@ -101,45 +119,6 @@ void bodyLoad(const Environment& env, const Body& b, const S& phi, const S& z, S
   Pn = b.wet_weight * s + q * b.cdn * signedSquare(Un);
 }
 
-/// Residual of the half-grid interval between nodes a and b (eqs. 11 and 42, multiplied by h so
-/// that zero-length junctions are included): six rows.
-template <class S>
-void intervalResidual(const Problem& p, const MeshInterval& iv, const Material& ma, const Material& mb,
-                      const S* Ya, const S* Yb, S* R) {
-  using std::cos;
-  using std::pow;
-  using std::sin;
-  const double h = iv.h;
-  const S Ta = tension(ma, Ya[EPS]), Tb = tension(mb, Yb[EPS]);
-  const S pa = 1.0 + Ya[EPS], pb = 1.0 + Yb[EPS];
-  const S dphi = Yb[PHI] - Ya[PHI];
-  S f1a, f2a, f1b, f2b;
-  if (h > 0.0) {
-    distributedLoad(p.environment, ma, Ya, f1a, f2a);
-    distributedLoad(p.environment, mb, Yb, f1b, f2b);
-  } else {
-    f1a = f2a = f1b = f2b = S(0.0) + 0.0 * Ya[EPS];
-  }
-  S Pt = S(0.0) + 0.0 * Ya[EPS], Pn = S(0.0) + 0.0 * Ya[EPS];
-  for (std::size_t k : iv.bodies) {
-    S t, n;
-    bodyLoad(p.environment, p.bodies[k], S(0.5 * (Ya[PHI] + Yb[PHI])), S(0.5 * (Ya[Z] + Yb[Z])), t, n);
-    Pt += t;
-    Pn += n;
-  }
-  // (1) tangential force balance: dT/ds - Sn dphi/ds + f1 = 0
-  R[0] = Tb - Ta - 0.5 * (Ya[SN] + Yb[SN]) * dphi + 0.5 * h * (f1a + f1b) + Pt;
-  // (2) normal force balance: dSn/ds + T dphi/ds + f2 = 0
-  R[1] = Yb[SN] - Ya[SN] + 0.5 * (Ta + Tb) * dphi + 0.5 * h * (f2a + f2b) + Pn;
-  // (5) dphi/ds - Omega3 = 0
-  R[2] = dphi - 0.5 * h * (Ya[OMEGA] + Yb[OMEGA]);
-  // (6) EI dOmega3/ds + Sn (1 + eps)^3 = 0, moment EI Omega3 continuous across junctions
-  R[3] = mb.EI * Yb[OMEGA] - ma.EI * Ya[OMEGA] + 0.5 * h * (Ya[SN] * pa * pa * pa + Yb[SN] * pb * pb * pb);
-  // (42) coordinate integration: dx/ds = (1 + eps) sin phi, dz/ds = (1 + eps) cos phi
-  R[4] = Yb[X] - Ya[X] - 0.5 * h * (pa * sin(Ya[PHI]) + pb * sin(Yb[PHI]));
-  R[5] = Yb[Z] - Ya[Z] - 0.5 * h * (pa * cos(Ya[PHI]) + pb * cos(Yb[PHI]));
-}
-
 /// Internal force F = T t + Sn n at a node in the problem frame: (Fx, Fz) [N].
 template <class S>
 void internalForce(const Material& m, const S* Y, S& Fx, S& Fz) {
@@ -149,6 +128,67 @@ void internalForce(const Material& m, const S* Y, S& Fx, S& Fz) {
   const S c = cos(Y[PHI]), s = sin(Y[PHI]);
   Fx = T * s + Y[SN] * c;
   Fz = T * c - Y[SN] * s;
+}
+
+/// Residual of a zero-length junction (segment boundary or inline body): a pin joint. The two
+/// nodes coincide, the internal force jumps by the concentrated load of the bodies there
+/// (global force balance, exact for any kink angle), and the moment vanishes on both sides,
+/// like the moment-free ends of eq. 33. A pin lets a low-EI line kink at a point load, which the
+/// half-grid rows of eq. 11 could only represent with a very fine mesh.
+template <class S>
+void junctionResidual(const Problem& p, const MeshInterval& iv, const Material& ma, const Material& mb,
+                      const S* Ya, const S* Yb, S* R) {
+  using std::cos;
+  using std::sin;
+  S Fxa, Fza, Fxb, Fzb;
+  internalForce(ma, Ya, Fxa, Fza);
+  internalForce(mb, Yb, Fxb, Fzb);
+  S Px = S(0.0) + 0.0 * Ya[EPS], Pz = S(0.0) + 0.0 * Ya[EPS];
+  const S phi = 0.5 * (Ya[PHI] + Yb[PHI]);
+  for (std::size_t k : iv.bodies) {
+    S t, n;
+    bodyLoad(p.environment, p.bodies[k], phi, Ya[Z], t, n);
+    Px += t * sin(phi) + n * cos(phi);  // t = (sin, cos), n = (cos, -sin)
+    Pz += t * cos(phi) - n * sin(phi);
+  }
+  R[0] = Fxb - Fxa + Px;
+  R[1] = Fzb - Fza + Pz;
+  R[2] = Ya[OMEGA];
+  R[3] = Yb[OMEGA];
+  R[4] = Yb[X] - Ya[X];
+  R[5] = Yb[Z] - Ya[Z];
+}
+
+/// Residual of the half-grid interval between nodes a and b (eqs. 11 and 42, multiplied by h):
+/// six rows. `capped` applies the static seabed cap of eq. 35.
+template <class S>
+void intervalResidual(const Problem& p, const MeshInterval& iv, const Material& ma, const Material& mb,
+                      const S* Ya, const S* Yb, S* R, bool capped) {
+  using std::cos;
+  using std::sin;
+  const double h = iv.h;
+  if (h == 0.0) {
+    junctionResidual(p, iv, ma, mb, Ya, Yb, R);
+    return;
+  }
+  const S Ta = tension(ma, Ya[EPS]), Tb = tension(mb, Yb[EPS]);
+  const S pa = 1.0 + Ya[EPS], pb = 1.0 + Yb[EPS];
+  const S dphi = Yb[PHI] - Ya[PHI];
+  S f1a, f2a, f1b, f2b, Fa, Fb;
+  seabedForces(p.environment, ma, Ya, Yb, capped, Fa, Fb);
+  distributedLoad(p.environment, ma, Ya, Fa, f1a, f2a);
+  distributedLoad(p.environment, mb, Yb, Fb, f1b, f2b);
+  // (1) tangential force balance: dT/ds - Sn dphi/ds + f1 = 0
+  R[0] = Tb - Ta - 0.5 * (Ya[SN] + Yb[SN]) * dphi + 0.5 * h * (f1a + f1b);
+  // (2) normal force balance: dSn/ds + T dphi/ds + f2 = 0
+  R[1] = Yb[SN] - Ya[SN] + 0.5 * (Ta + Tb) * dphi + 0.5 * h * (f2a + f2b);
+  // (5) dphi/ds - Omega3 = 0
+  R[2] = dphi - 0.5 * h * (Ya[OMEGA] + Yb[OMEGA]);
+  // (6) EI dOmega3/ds + Sn (1 + eps)^3 = 0
+  R[3] = ma.EI * (Yb[OMEGA] - Ya[OMEGA]) + 0.5 * h * (Ya[SN] * pa * pa * pa + Yb[SN] * pb * pb * pb);
+  // (42) coordinate integration: dx/ds = (1 + eps) sin phi, dz/ds = (1 + eps) cos phi
+  R[4] = Yb[X] - Ya[X] - 0.5 * h * (pa * sin(Ya[PHI]) + pb * sin(Yb[PHI]));
+  R[5] = Yb[Z] - Ya[Z] - 0.5 * h * (pa * cos(Ya[PHI]) + pb * cos(Yb[PHI]));
 }
 
 /// Force (Fx, Fz) a surface buoy applies to the line's top end when the line hangs at elevation z

@@ -71,6 +71,10 @@ struct CurrentPoint {
 struct Seabed {
   double stiffness = 1.0e5;    ///< k, force per unit line length per metre of penetration [N/m^2]
   double damping = 0.0;        ///< b, dashpot per unit line length [N s/m^2] (dynamics)
+  /// Static cap of eq. 35: the reaction on a stretch of line never exceeds its wet weight w_o.
+  /// Off by default: grounded line rests exactly at F_bot = w_o, so the cap puts a kink in the
+  /// equations at every grounded node and Newton converges only linearly (see docs/method.md).
+  bool static_cap = false;
   /// Optional bottom profile (x [m], depth [m]) with x increasing; empty means flat at Environment::depth.
   std::vector<std::pair<double, double>> profile;
 };

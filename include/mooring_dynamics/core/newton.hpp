@@ -25,6 +25,18 @@ class NewtonSystem {
   virtual double scale(int i) const = 0;
   /// Human-readable name of unknown i, e.g. "node 12 (s = 5.50 m) phi".
   virtual std::string describe(int i) const = 0;
+  /// Largest fraction of the update dY that may be applied in one iteration, in (0, 1]
+  /// (e.g. to keep angles from turning by more than a fraction of a radian). Default 1.
+  virtual double stepLimit(const Eigen::VectorXd& dY) const {
+    (void)dY;
+    return 1.0;
+  }
+  /// Chance to adjust the update dY at iterate Y before it is applied (e.g. to stop nodes at a
+  /// unilateral contact instead of letting them fly through it). Default: unchanged.
+  virtual void conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY) const {
+    (void)Y;
+    (void)dY;
+  }
 };
 
 struct NewtonOptions {

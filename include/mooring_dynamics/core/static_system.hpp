@@ -21,8 +21,18 @@ class StaticSystem2D : public NewtonSystem {
   void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override;
   double scale(int i) const override;
   std::string describe(int i) const override;
+  /// No node turns by more than kMaxAngleStep in one iteration.
+  double stepLimit(const Eigen::VectorXd& dY) const override;
+  /// A node that is off the seabed and would pass below its rest penetration stops there.
+  void conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY) const override;
+
+  /// Apply the static cap F_bot <= w_o of eq. 35 (the paper's model) or the plain spring (default).
+  void setSeabedCap(bool capped) { capped_ = capped; }
+  /// Largest seabed reaction over wet weight among the nodes of state Y (for the cap check).
+  double maxSeabedLoadRatio(const Eigen::VectorXd& Y) const;
 
  private:
+  bool capped_ = false;
   const Problem& problem_;
   const Mesh& mesh_;
   double chi_[6];
