@@ -177,5 +177,35 @@ Eigen::VectorXd stateFromShot(const Mesh& mesh, const Shot& shot) {
   return Y;
 }
 
+Eigen::VectorXd straightLineState(const Problem& problem, const Mesh& mesh) {
+  using namespace eq2d;
+  const double L = problem.totalLength();
+  double dx = 0.0, dz = 0.0;
+  switch (problem.top.type) {
+    case TopBoundary::Type::Position:
+      dx = problem.top.x - problem.anchor_x;
+      dz = problem.top.z - problem.anchor_z;
+      break;
+    case TopBoundary::Type::Force:
+      dx = problem.top.fx;
+      dz = problem.top.fz;
+      break;
+    case TopBoundary::Type::Buoy:
+      dz = -problem.anchor_z;
+      dx = std::sqrt(std::max(L * L - dz * dz, 0.0));
+      break;
+  }
+  const double phi = std::atan2(dx, dz);
+  const std::size_t n = mesh.nodes.size();
+  Eigen::VectorXd Y = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(N * n));
+  for (std::size_t j = 0; j < n; ++j) {
+    double* y = Y.data() + N * j;
+    y[PHI] = phi;
+    y[X] = problem.anchor_x + std::sin(phi) * mesh.nodes[j].s;
+    y[Z] = problem.anchor_z + std::cos(phi) * mesh.nodes[j].s;
+  }
+  return Y;
+}
+
 }  // namespace core
 }  // namespace mooring_dynamics

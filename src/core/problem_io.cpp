@@ -293,9 +293,10 @@ void readEnvironment(const Item& it, Environment& env) {
   env.depth = m.number("depth", env.depth, Range::Positive);
 
   if (m.has("seabed")) {
-    const Map sb(m.at("seabed"), {"stiffness", "damping", "profile"});
+    const Map sb(m.at("seabed"), {"stiffness", "damping", "profile", "static_cap"});
     env.seabed.stiffness = sb.number("stiffness", env.seabed.stiffness, Range::Positive);
     env.seabed.damping = sb.number("damping", env.seabed.damping, Range::NonNegative);
+    if (sb.has("static_cap")) env.seabed.static_cap = readBool(sb.at("static_cap"));
     if (sb.has("profile")) {
       std::vector<Item> items;
       const Item pit = sb.at("profile");
@@ -476,7 +477,7 @@ void readSolver(const Item& it, StaticOptions& opt) {
   const Map m(it, {"static"});
   if (!presentAndNotNull(m, "static")) return;
   const Map s(m.at("static"),
-              {"tolerance", "max_iterations", "relaxation", "adaptive_relaxation", "R1", "R2"});
+              {"tolerance", "max_iterations", "relaxation", "adaptive_relaxation", "R1", "R2", "initial_guess"});
   opt.tolerance = s.number("tolerance", opt.tolerance, Range::Positive);
   if (s.has("max_iterations")) {
     const Item mi = s.at("max_iterations");
@@ -490,6 +491,15 @@ void readSolver(const Item& it, StaticOptions& opt) {
     if (!(opt.relaxation > 0.0 && opt.relaxation <= 1.0)) r.fail("must be in (0, 1]");
   }
   if (s.has("adaptive_relaxation")) opt.adaptive_relaxation = readBool(s.at("adaptive_relaxation"));
+  if (s.has("initial_guess")) {
+    const Item g = s.at("initial_guess");
+    const std::string v = readString(g);
+    if (v == "catenary") opt.initial_guess = StaticOptions::InitialGuess::Catenary;
+    else if (v == "straight") opt.initial_guess = StaticOptions::InitialGuess::StraightLine;
+    else
+      throw ProblemError(g.path + " = " + quoted(v) + ": unknown initial guess (known: catenary, straight)" +
+                         lineSuffix(g.mark));
+  }
   opt.R2 = s.number("R2", opt.R2, Range::Any);
   opt.R1 = s.number("R1", opt.R1, Range::Any);
   if (!(opt.R2 > 1.0)) {

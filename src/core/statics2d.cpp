@@ -212,8 +212,11 @@ StaticResult solveStatic(const Problem& problem, const StaticOptions& options) {
   if (!err.empty()) throw std::invalid_argument(err);
 
   const Mesh mesh = buildMesh(problem);
-  const Shot shot = catenaryShot(problem, mesh);           // initial guess: generalized catenary
-  Eigen::VectorXd Y = stateFromShot(mesh, shot);
+  // Initial guess: a generalized catenary (default) or a straight line.
+  const Shot shot = catenaryShot(problem, mesh);
+  Eigen::VectorXd Y = options.initial_guess == StaticOptions::InitialGuess::StraightLine
+                          ? straightLineState(problem, mesh)
+                          : stateFromShot(mesh, shot);
   StaticSystem2D system(problem, mesh);
   // Stage 1: the seabed as a plain spring: smooth equations, Newton converges quadratically.
   system.setSeabedCap(false);
@@ -227,6 +230,11 @@ StaticResult solveStatic(const Problem& problem, const StaticOptions& options) {
     const int stage1 = summary.iterations;
     summary = solveNewton(system, Y, newtonOptions(options));
     summary.iterations += stage1;
+    summary.message += " with the seabed cap, " + std::to_string(summary.iterations) + " iterations in all";
+  }
+  if (!summary.converged && problem.top.type == TopBoundary::Type::Position && !shot.ok) {
+    summary.message += "; hint: no catenary with positive horizontal tension reaches the top position "
+                       "(the top may be too close to the anchor, leaving slack line on a frictionless seabed)";
   }
 
   StaticResult res = staticResultFromState(problem, mesh, Y);

@@ -222,3 +222,62 @@ TEST(Statics2D, NonConvergenceIsAResultNotAnException) {
   EXPECT_NE(r.summary.message.find("did not converge"), std::string::npos) << r.summary.message;
   EXPECT_EQ(r.nodes.size(), 201u);  // the last iterate is still returned: 200 intervals
 }
+
+TEST(Statics2D, AdaptiveRelaxationRescuesAPoorStartWhereFixedRelaxationFails) {
+  // A stiff (EI = 100 N m^2) line with 70 m on the seabed, started from a straight line between
+  // anchor and top: plain Newton (mu fixed at 1) wanders and never settles; the adaptive rule of
+  // eqs. 40-41 cuts mu while the update grows and converges.
+  auto problem = [](bool adaptive) {
+    Problem p = catenaryProblem(1.0, 200.0);
+    p.materials[0].EI = 100.0;
+    p.materials[0].EA = 1.0e8;
+    p.materials[0].diameter = 0.05;
+    p.environment.seabed.stiffness = 1.0e6;
+    p.top.x = 130.0;
+    p.top.z = 0.0;
+    p.static_options.initial_guess = StaticOptions::InitialGuess::StraightLine;
+    p.static_options.adaptive_relaxation = adaptive;
+    p.static_options.max_iterations = 500;
+    return p;
+  };
+  const StaticResult fixed = solveStatic(problem(false));
+  EXPECT_FALSE(fixed.summary.converged) << fixed.summary.message;
+  const StaticResult adaptive = solveStatic(problem(true));
+  ASSERT_TRUE(adaptive.summary.converged) << adaptive.summary.message;
+  EXPECT_LT(adaptive.summary.iterations, 100);
+  // And it found the same equilibrium as the default catenary start.
+  Problem reference = problem(true);
+  reference.static_options.initial_guess = StaticOptions::InitialGuess::Catenary;
+  const StaticResult r = solveStatic(reference);
+  ASSERT_TRUE(r.summary.converged);
+  EXPECT_NEAR(adaptive.topTension(), r.topTension(), kConsistencyTol * r.topTension());
+}
+
+TEST(Statics2D, SeabedCapOfEquation35) {
+  auto pen = [](const Problem& p, const NodeState& n) {
+    return std::max(0.0, p.environment.seabedElevation(n.x) - n.z);
+  };
+  auto maxMeanReaction = [&](const Problem& p, const StaticResult& r) {
+    double worst = 0.0;
+    for (std::size_t j = 0; j + 1 < r.nodes.size(); ++j)
+      worst = std::max(worst, 0.5 * p.environment.seabed.stiffness * (pen(p, r.nodes[j]) + pen(p, r.nodes[j + 1])));
+    return worst;
+  };
+  // On a flat bottom the grounded line rests at F_bot = w_o: the cap changes nothing.
+  Problem flat = grounded(0.5);
+  const StaticResult plain = solveStatic(flat);
+  flat.environment.seabed.static_cap = true;
+  const StaticResult capped = solveStatic(flat);
+  ASSERT_TRUE(plain.summary.converged && capped.summary.converged) << capped.summary.message;
+  EXPECT_LE(maxMeanReaction(flat, capped), kW * (1.0 + 1e-6));
+  EXPECT_NEAR(capped.topTension(), plain.topTension(), kConsistencyTol * plain.topTension());
+  // A line drawn taut over a 3 m ridge: the crest pushes up with the weight plus tension times
+  // curvature, which the uncapped (default) foundation carries.
+  Problem ridge = grounded(0.5);
+  ridge.environment.seabed.profile = {{0.0, 100.0}, {30.0, 100.0}, {40.0, 97.0}, {50.0, 100.0}, {300.0, 100.0}};
+  ridge.environment.seabed.stiffness = 1.0e5;
+  ridge.top.x = 150.0;
+  const StaticResult over = solveStatic(ridge);
+  ASSERT_TRUE(over.summary.converged) << over.summary.message;
+  EXPECT_GT(maxMeanReaction(ridge, over), 2.0 * kW);
+}

@@ -30,6 +30,11 @@ Shot catenaryShot(const Problem& problem, const Mesh& mesh);
 /// Newton start vector Y (N = 6 per node) from a shot.
 Eigen::VectorXd stateFromShot(const Mesh& mesh, const Shot& shot);
 
+/// Newton start vector for a straight line from the anchor toward the top: to the top position;
+/// along the top force; or to the surface point one line length away for a buoy. Unstrained,
+/// no shear, no curvature.
+Eigen::VectorXd straightLineState(const Problem& problem, const Mesh& mesh);
+
 /// Total wet weight of the line and its bodies [N].
 double totalWetWeight(const Problem& problem, const Mesh& mesh);
 

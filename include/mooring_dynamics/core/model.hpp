@@ -72,8 +72,8 @@ struct Seabed {
   double stiffness = 1.0e5;    ///< k, force per unit line length per metre of penetration [N/m^2]
   double damping = 0.0;        ///< b, dashpot per unit line length [N s/m^2] (dynamics)
   /// Static cap of eq. 35: the reaction on a stretch of line never exceeds its wet weight w_o.
-  /// Off by default: grounded line rests exactly at F_bot = w_o, so the cap puts a kink in the
-  /// equations at every grounded node and Newton converges only linearly (see docs/method.md).
+  /// Off by default: a capped seabed cannot carry a concentrated reaction (a ridge under a taut
+  /// line, a clump weight on the bottom), which then sinks in without end (docs/method.md).
   bool static_cap = false;
   /// Optional bottom profile (x [m], depth [m]) with x increasing; empty means flat at Environment::depth.
   std::vector<std::pair<double, double>> profile;
@@ -134,6 +134,11 @@ struct StaticOptions {
   bool adaptive_relaxation = true;///< eqs. 40-41; false keeps mu = mu0 throughout
   double R1 = 1.1;                ///< mu divided by R1 when sigma grows (eq. 40), > R2
   double R2 = 1.02;               ///< mu multiplied by R2 when sigma shrinks (eq. 41), > 1
+  /// Starting shape of the Newton iteration: a generalized elastic catenary found by shooting
+  /// (robust, default) or a straight line from the anchor toward the top (a poor start, useful to
+  /// exercise the relaxation).
+  enum class InitialGuess { Catenary, StraightLine };
+  InitialGuess initial_guess = InitialGuess::Catenary;
 
   /// Empty when valid, else a message naming the field, its value and the constraint.
   std::string validate() const;
