@@ -238,6 +238,7 @@ std::string Problem::validate() const {
   }
   if (!(e = check(finite(env.wind_speed) && env.wind_speed >= 0.0, "environment.wind.speed", env.wind_speed, "must be >= 0")).empty()) return e;
   if (!(e = check(finite(env.wind_direction), "environment.wind.direction_deg", env.wind_direction, "must be finite")).empty()) return e;
+  if (!(e = env.waves.validate()).empty()) return e;
 
   if (materials.empty()) return "materials: at least one material is needed";
   for (const auto& m : materials)
@@ -288,7 +289,8 @@ std::string Problem::validate() const {
       if (!(e = validateBuoy(top.buoy)).empty()) return e;
       break;
   }
-  return static_options.validate();
+  if (!(e = static_options.validate()).empty()) return e;
+  return dynamics.validate();
 }
 
 }  // namespace core

@@ -10,6 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "mooring_dynamics/core/dynamics_options.hpp"
+#include "mooring_dynamics/core/waves.hpp"
+
 namespace mooring_dynamics {
 namespace core {
 
@@ -88,6 +91,7 @@ struct Environment {
   std::vector<CurrentPoint> current;  ///< profile, depth increasing; empty means no current
   double wind_speed = 0.0;            ///< at the buoy [m/s]
   double wind_direction = 0.0;        ///< direction the wind blows toward, counterclockwise from +x [rad]
+  WaveSpec waves;                     ///< surface waves (dynamics); none by default
 
   /// Seabed elevation z_bot(x) [m] (negative below the surface) and its slope dz_bot/dx [-].
   double seabedElevation(double x) const;
@@ -155,6 +159,7 @@ struct Problem {
   double anchor_z = -100.0;       ///< [m]
   TopBoundary top;
   StaticOptions static_options;
+  DynamicOptions dynamics;        ///< problem-file section `dynamics:`
 
   double totalLength() const;
   /// Empty when the problem is consistent, else a message naming the field, value and constraint.

@@ -1,0 +1,65 @@
+// Options of the dynamic solver and the prescribed motion of the top end (problem file section
+// `dynamics:`). Plain structs; validation names the problem-file key.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mooring_dynamics/core/time_integration.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+/// How the top end moves in a dynamic run. Positions are in the problem frame (x east, z up);
+/// motions are about the static top position unless a table gives absolute positions.
+struct TopMotion {
+  enum class Type {
+    Hold,           ///< top held at its static position
+    Sinusoid,       ///< x = x0 + ax sin(2 pi t / T + phase), z = z0 + az sin(2 pi t / T + phase)
+    PositionTable,  ///< rows (t [s], x [m], z [m]): absolute positions, linear in between
+    VelocityTable,  ///< rows (t [s], vx [m/s], vz [m/s]): linear in between
+    ForceTable,     ///< rows (t [s], fx [N], fz [N]): force applied to the line's top end
+    WaveFollower    ///< the top follows the wave surface vertically (heave), horizontal position held
+  };
+  Type type = Type::Hold;
+  double amplitude_x = 0.0;  ///< Sinusoid [m]
+  double amplitude_z = 0.0;  ///< Sinusoid [m]
+  double period = 1.0;       ///< Sinusoid [s]
+  double phase = 0.0;        ///< Sinusoid [rad]
+  struct Row {
+    double t, a, b;
+  };
+  std::vector<Row> table;    ///< tables, t strictly increasing; held constant after the last row
+
+  /// Velocity BCs (paper eq. 34, default) or positions prescribed directly in the Newton system.
+  bool prescribe_position = false;
+
+  std::string validate() const;
+};
+
+struct DynamicOptions {
+  double duration = 0.0;         ///< simulated time [s], > 0 for a dynamic run
+  double dt = 0.1;               ///< base time step [s]; also the output grid unless output_interval is set
+  double output_interval = 0.0;  ///< time series sampling [s]; 0 = dt; must be a multiple of dt
+  double snapshot_interval = 0.0;///< full line snapshots every this many seconds; 0 = none
+  std::vector<double> record_s;  ///< arclengths [m] of nodes whose tension and position are recorded
+
+  GeneralizedAlpha scheme = GeneralizedAlpha::fromLambdaInf(-0.5);  ///< section 4, default lambda_inf = -0.5
+  std::string scheme_name = "lambda_inf=-0.5";                       ///< for reports
+
+  int max_cut_levels = 4;        ///< adaptive time stepping: dt / 10^level down to 1e-4 dt (4.3)
+  double tolerance = 1.0e-6;     ///< Newton tolerance on sigma (eq. 39) per step
+  int max_iterations = 30;       ///< Newton iterations per step before the step is cut
+  double relaxation = 1.0;       ///< mu0 of the per-step Newton iteration
+  bool adaptive_relaxation = true;
+
+  bool adaptive_mesh = false;    ///< section 3, eqs. 15-24
+  double mesh_weight = 20.0;     ///< c_w of eq. 15
+
+  TopMotion top_motion;
+
+  std::string validate() const;
+};
+
+}  // namespace core
+}  // namespace mooring_dynamics
