@@ -286,7 +286,7 @@ bool presentAndNotNull(const Map& m, const std::string& key) { return m.has(key)
 // Sections
 
 void readEnvironment(const Item& it, Environment& env) {
-  const Map m(it, {"water_density", "air_density", "gravity", "depth", "seabed", "current", "wind"});
+  const Map m(it, {"water_density", "air_density", "gravity", "depth", "seabed", "current", "wind", "waves"});
   env.water_density = m.number("water_density", env.water_density, Range::Positive);
   env.air_density = m.number("air_density", env.air_density, Range::NonNegative);
   env.gravity = m.number("gravity", env.gravity, Range::Positive);
@@ -353,6 +353,68 @@ void readEnvironment(const Item& it, Environment& env) {
     } else {
       cit.wrongType("a list of {depth, speed, direction_deg} or a map {speed, direction_deg}");
     }
+  }
+
+  if (m.has("waves")) {
+    // Linear waves (core/waves.hpp). Keys not used by the chosen type are rejected.
+    const Map w(m.at("waves"), {"type", "height", "period", "hs", "tp", "gamma", "components", "f_min_factor",
+                                "f_max_factor", "seed", "direction_deg", "ramp"});
+    const Item ti = w.required("type", "one of regular, jonswap, pierson_moskowitz");
+    const std::string type = readString(ti);
+    WaveSpec ws;
+    if (type == "regular")
+      ws.type = WaveSpec::Type::Regular;
+    else if (type == "jonswap")
+      ws.type = WaveSpec::Type::Jonswap;
+    else if (type == "pierson_moskowitz")
+      ws.type = WaveSpec::Type::PiersonMoskowitz;
+    else
+      throw ProblemError(ti.path + " = " + quoted(type) +
+                         ": unknown wave type (known: regular, jonswap, pierson_moskowitz)" + lineSuffix(ti.mark));
+    const bool regular = ws.type == WaveSpec::Type::Regular;
+    for (const char* k : {"height", "period"})
+      if (!regular && w.has(k)) w.at(k).fail("only used with type: regular");
+    for (const char* k : {"hs", "tp", "components", "f_min_factor", "f_max_factor", "seed"})
+      if (regular && w.has(k)) w.at(k).fail("only used with type: jonswap or pierson_moskowitz");
+    if (ws.type != WaveSpec::Type::Jonswap && w.has("gamma")) w.at("gamma").fail("only used with type: jonswap");
+
+    if (regular) {
+      ws.height = w.number("height", Range::Positive);
+      ws.period = w.number("period", Range::Positive);
+    } else {
+      ws.hs = w.number("hs", Range::Positive);
+      ws.tp = w.number("tp", Range::Positive);
+      if (w.has("gamma")) {
+        const Item gi = w.at("gamma");
+        ws.gamma = readNumber(gi);
+        if (!(ws.gamma >= 1.0)) gi.fail("must be >= 1 (1 = Pierson-Moskowitz)");
+      }
+      if (w.has("components")) {
+        const Item ci = w.at("components");
+        const long long v = readInteger(ci);
+        if (v < 1 || v > 10000) ci.fail("must be an integer in [1, 10000]");
+        ws.components = static_cast<int>(v);
+      }
+      if (w.has("f_min_factor")) {
+        const Item fi = w.at("f_min_factor");
+        ws.f_min_factor = readNumber(fi);
+        if (!(ws.f_min_factor > 0.0 && ws.f_min_factor < 1.0)) fi.fail("must be in (0, 1)");
+      }
+      if (w.has("f_max_factor")) {
+        const Item fi = w.at("f_max_factor");
+        ws.f_max_factor = readNumber(fi);
+        if (!(ws.f_max_factor > 1.0)) fi.fail("must be > 1");
+      }
+      if (w.has("seed")) {
+        const Item si = w.at("seed");
+        const long long v = readInteger(si);
+        if (v < 0 || v > 4294967295LL) si.fail("must be an integer in [0, 4294967295]");
+        ws.seed = static_cast<std::uint32_t>(v);
+      }
+    }
+    ws.direction = w.number("direction_deg", 0.0, Range::Any) * kDegToRad;
+    ws.ramp = w.number("ramp", 0.0, Range::NonNegative);
+    env.waves = ws;
   }
 }
 

@@ -477,3 +477,87 @@ TEST(ProblemIo, DocumentationExampleLoads) {
   EXPECT_EQ(p.segments.size(), 3u);
   EXPECT_EQ(p.top.type, TopBoundary::Type::Buoy);
 }
+
+// ---------------------------------------------------------------------------------------------
+// environment.waves
+
+TEST(ProblemIo, WavesRegularAndRandom) {
+  EXPECT_EQ(loadProblemFromString(kMinimal).environment.waves.type, WaveSpec::Type::None);  // default
+  {
+    const Problem p = loadProblemFromString(minimalWith(
+        "environment:\n  waves: {type: regular, height: 2.5, period: 9, direction_deg: 90, ramp: 20}\n"));
+    const WaveSpec& w = p.environment.waves;
+    EXPECT_EQ(w.type, WaveSpec::Type::Regular);
+    EXPECT_DOUBLE_EQ(w.height, 2.5);
+    EXPECT_DOUBLE_EQ(w.period, 9.0);
+    EXPECT_NEAR(w.direction, kPi / 2, 1e-15);
+    EXPECT_DOUBLE_EQ(w.ramp, 20.0);
+  }
+  {
+    const Problem p = loadProblemFromString(minimalWith(
+        "environment:\n  waves: {type: jonswap, hs: 9.8, tp: 16, gamma: 2, components: 300,\n"
+        "          f_min_factor: 0.4, f_max_factor: 5, seed: 4294967295, direction_deg: -30}\n"));
+    const WaveSpec& w = p.environment.waves;
+    EXPECT_EQ(w.type, WaveSpec::Type::Jonswap);
+    EXPECT_DOUBLE_EQ(w.hs, 9.8);
+    EXPECT_DOUBLE_EQ(w.tp, 16.0);
+    EXPECT_DOUBLE_EQ(w.gamma, 2.0);
+    EXPECT_EQ(w.components, 300);
+    EXPECT_DOUBLE_EQ(w.f_min_factor, 0.4);
+    EXPECT_DOUBLE_EQ(w.f_max_factor, 5.0);
+    EXPECT_EQ(w.seed, 4294967295u);
+    EXPECT_NEAR(w.direction, -kPi / 6, 1e-15);
+    EXPECT_DOUBLE_EQ(w.ramp, 0.0);  // default
+  }
+  {
+    const Problem p = loadProblemFromString(
+        minimalWith("environment:\n  waves: {type: pierson_moskowitz, hs: 3, tp: 10}\n"));
+    const WaveSpec& w = p.environment.waves;
+    const WaveSpec d;
+    EXPECT_EQ(w.type, WaveSpec::Type::PiersonMoskowitz);
+    EXPECT_EQ(w.components, d.components);  // defaults from core/waves.hpp
+    EXPECT_DOUBLE_EQ(w.f_min_factor, d.f_min_factor);
+    EXPECT_DOUBLE_EQ(w.f_max_factor, d.f_max_factor);
+    EXPECT_EQ(w.seed, d.seed);
+  }
+}
+
+TEST(ProblemIo, WavesErrors) {
+  auto waves = [](const std::string& map) { return minimalWith("environment:\n  waves: " + map + "\n"); };
+  EXPECT_ERROR_HAS(waves("{height: 1, period: 5}"), "environment.waves.type: required key missing");
+  EXPECT_ERROR_HAS(waves("{type: swell, height: 1, period: 5}"),
+                   "environment.waves.type = \"swell\": unknown wave type (known: regular, jonswap, pierson_moskowitz)");
+  EXPECT_ERROR_HAS(waves("{type: regular, height: 1}"), "environment.waves.period: required key missing");
+  EXPECT_ERROR_HAS(waves("{type: regular, height: -1, period: 5}"), "environment.waves.height = -1: must be > 0",
+                   "(line ");
+  EXPECT_ERROR_HAS(waves("{type: regular, height: 1, period: 0}"), "environment.waves.period = 0: must be > 0");
+  EXPECT_ERROR_HAS(waves("{type: regular, height: 1, period: 5, hs: 2}"),
+                   "environment.waves.hs = 2: only used with type: jonswap or pierson_moskowitz");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, period: 5}"),
+                   "environment.waves.period = 5: only used with type: regular");
+  EXPECT_ERROR_HAS(waves("{type: pierson_moskowitz, hs: 2, tp: 8, gamma: 3.3}"),
+                   "environment.waves.gamma = 3.3: only used with type: jonswap");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, tp: 8}"), "environment.waves.hs: required key missing");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: -1, tp: 8}"), "environment.waves.hs = -1: must be > 0");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: .inf}"), "environment.waves.tp = .inf: must be a finite number");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, gamma: 0.5}"), "environment.waves.gamma = 0.5: must be >= 1");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, components: 0}"),
+                   "environment.waves.components = 0: must be an integer in [1, 10000]");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, components: 2.5}"),
+                   "environment.waves.components = 2.5: expected an integer");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, f_min_factor: 1}"),
+                   "environment.waves.f_min_factor = 1: must be in (0, 1)");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, f_max_factor: 0.8}"),
+                   "environment.waves.f_max_factor = 0.8: must be > 1");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, seed: -1}"),
+                   "environment.waves.seed = -1: must be an integer in [0, 4294967295]");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, seed: 4294967296}"),
+                   "environment.waves.seed = 4294967296: must be an integer in [0, 4294967295]");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, ramp: -5}"), "environment.waves.ramp = -5: must be >= 0");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, direction_deg: nan}"),
+                   "environment.waves.direction_deg = nan: must be a finite number");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: 2, tp: 8, hs_m: 2}"), "environment.waves.hs_m: unknown key",
+                   "did you mean \"hs\"?");
+  EXPECT_ERROR_HAS(waves("[regular]"), "environment.waves", "expected a map");
+  EXPECT_ERROR_HAS(waves("{type: jonswap, hs: \"2\", tp: 8}"), "environment.waves.hs = \"2\"", "expected a number");
+}
