@@ -146,7 +146,7 @@ void StaticSystem2D::conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY
   for (std::size_t j = 0; j < mesh_.nodes.size(); ++j) {
     const Eigen::Index iz = static_cast<Eigen::Index>(N * j + Z);
     const double w = std::max(problem_.materials[mesh_.nodes[j].material].wet_weight, 0.0);
-    const double rest = env.seabedElevation(Y[iz - 1]) - w / env.seabed.stiffness;
+    const double rest = env.seabedElevation(Y[iz - 1]) - 1.5 * w / env.seabed.stiffness;  // resting penetration
     if (Y[iz] >= rest && Y[iz] + dY[iz] < rest) dY[iz] = rest - Y[iz];
   }
 }
@@ -210,8 +210,18 @@ StaticResult solveStatic(const Problem& problem, const StaticOptions& options) {
   std::string err = problem.validate();
   if (err.empty()) err = options.validate();
   if (!err.empty()) throw std::invalid_argument(err);
+  return solveStaticOnMesh(problem, buildMesh(problem), options);
+}
 
-  const Mesh mesh = buildMesh(problem);
+StaticResult solveStaticOnMesh(const Problem& problem, const Mesh& mesh, const StaticOptions& options) {
+  std::string err = problem.validate();
+  if (err.empty()) err = options.validate();
+  if (err.empty() && (mesh.nodes.size() < 2 || mesh.intervals.size() + 1 != mesh.nodes.size() ||
+                      std::abs(mesh.nodes.back().s - problem.totalLength()) > 1e-9 * problem.totalLength()))
+    err = "mesh: " + std::to_string(mesh.nodes.size()) + " nodes and " + std::to_string(mesh.intervals.size()) +
+          " intervals do not describe the problem's line of " + std::to_string(problem.totalLength()) + " m";
+  if (!err.empty()) throw std::invalid_argument(err);
+
   // Initial guess: a generalized catenary (default) or a straight line.
   const Shot shot = catenaryShot(problem, mesh);
   Eigen::VectorXd Y = options.initial_guess == StaticOptions::InitialGuess::StraightLine

@@ -2,6 +2,7 @@
 // Newton relaxation with adaptive relaxation (section 6), seabed as elastic foundation (5.3).
 #pragma once
 
+#include "mooring_dynamics/core/mesh.hpp"
 #include "mooring_dynamics/core/model.hpp"
 #include "mooring_dynamics/core/result.hpp"
 
@@ -15,6 +16,11 @@ StaticResult solveStatic(const Problem& problem);
 
 /// Same, with explicit options (overrides problem.static_options).
 StaticResult solveStatic(const Problem& problem, const StaticOptions& options);
+
+/// Same, on a given mesh of the problem's line (e.g. buildAdaptiveMesh, adaptive_mesh.hpp) instead
+/// of buildMesh(problem); solveStatic(problem, options) is this on buildMesh(problem).
+/// Also throws std::invalid_argument when the mesh does not fit the problem.
+StaticResult solveStaticOnMesh(const Problem& problem, const Mesh& mesh, const StaticOptions& options);
 
 }  // namespace core
 }  // namespace mooring_dynamics
