@@ -58,7 +58,7 @@ Shot shootFromAnchor(const Problem& problem, const Mesh& mesh, double H, double 
     // No line below the bottom; grounded line rests at the penetration where the foundation
     // carries its weight (eq. 35).
     const double w = problem.materials[mesh.nodes[j].material].wet_weight;
-    const double rest = env.seabedElevation(shot.x[j]) - std::max(w, 0.0) / env.seabed.stiffness;
+    const double rest = env.seabedElevation(shot.x[j]) - 1.5 * std::max(w, 0.0) / env.seabed.stiffness;
     if (grounded || shot.z[j] < rest) shot.z[j] = rest;
   }
   return shot;

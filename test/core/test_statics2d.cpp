@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "mooring_dynamics/core/catenary.hpp"
+#include "mooring_dynamics/core/equations2d.hpp"
 #include "mooring_dynamics/core/statics2d.hpp"
 
 using namespace mooring_dynamics::core;
@@ -254,13 +255,14 @@ TEST(Statics2D, AdaptiveRelaxationRescuesAPoorStartWhereFixedRelaxationFails) {
 }
 
 TEST(Statics2D, SeabedCapOfEquation35) {
-  auto pen = [](const Problem& p, const NodeState& n) {
-    return std::max(0.0, p.environment.seabedElevation(n.x) - n.z);
+  // Reaction of the (onset-smoothed) spring of eq. 35 at a node.
+  auto reaction = [](const Problem& p, const NodeState& n) {
+    return eq2d::seabedSpring(p.environment, n.x, n.z, eq2d::contactOnset(p.environment, p.materials[0]));
   };
   auto maxMeanReaction = [&](const Problem& p, const StaticResult& r) {
     double worst = 0.0;
     for (std::size_t j = 0; j + 1 < r.nodes.size(); ++j)
-      worst = std::max(worst, 0.5 * p.environment.seabed.stiffness * (pen(p, r.nodes[j]) + pen(p, r.nodes[j + 1])));
+      worst = std::max(worst, 0.5 * (reaction(p, r.nodes[j]) + reaction(p, r.nodes[j + 1])));
     return worst;
   };
   // On a flat bottom the grounded line rests at F_bot = w_o: the cap changes nothing.

@@ -57,13 +57,18 @@ class DynamicSolver2D {
   /// Unstretched arclength of every node [m] (after adaptive meshing).
   std::vector<double> nodeArclengths() const;
 
+  /// Diagnostic: largest relative difference between the assembled Jacobian of a step of size dt
+  /// from the current state (at the predictor) and central finite differences of its residual.
+  double jacobianFiniteDifferenceError(double dt) const;
+
   struct Totals {
     long steps = 0, cuts = 0, newton_iterations = 0;
   };
   Totals totals() const;
 
+  struct Impl;  ///< solver state (opaque; defined in dynamics2d.cpp)
+
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

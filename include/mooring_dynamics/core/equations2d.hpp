@@ -40,14 +40,36 @@ S linearized(double f, double df, const S& x) {
   return f + df * (x - value(x));
 }
 
-/// Seabed reaction per unit length at a node, eq. 35 without the cap: k (z_bot(x) - z) where
-/// the node is below the bottom, else 0 [N/m] (acts along +z).
+/// Width of the contact onset [m]: the rest penetration w_o / k of the line (see seabedSpring).
+inline double contactOnset(const Environment& env, const Material& m) {
+  return std::max(m.wet_weight, 0.0) / env.seabed.stiffness;
+}
+
+/// Seabed reaction per unit length at a node, eq. 35 without the cap [N/m] (acts along +z): the
+/// spring k (z_bot(x) - z) on the penetration p, with its onset smoothed over the first
+/// delta = w_o / k of penetration (k p^2 / (2 delta) below delta, k (p - delta / 2) beyond). A
+/// sharp onset makes Newton cycle a touchdown node in and out of contact; the smoothed law has a
+/// continuous slope and shifts a resting line by delta / 2 (a fraction of a millimetre for
+/// typical k).
 template <class S>
-S seabedSpring(const Environment& env, const S& x, const S& z) {
+S seabedSpring(const Environment& env, const S& x, const S& z, double delta) {
   const double zb = env.seabedElevation(value(x));
   if (!(value(z) < zb)) return S(0.0) + 0.0 * z;
   const S zbS = linearized(zb, env.seabedSlope(value(x)), x);
-  return env.seabed.stiffness * (zbS - z);
+  const S p = zbS - z;
+  const double k = env.seabed.stiffness;
+  if (delta > 0.0 && value(p) < delta) return k * p * p / (2.0 * delta);
+  return k * (p - 0.5 * delta);
+}
+
+/// Fraction of the seabed dashpot acting at a node: ramps from 0 to 1 over the contact onset.
+template <class S>
+S contactFraction(const Environment& env, const S& x, const S& z, double delta) {
+  const double zb = env.seabedElevation(value(x));
+  if (!(value(z) < zb)) return S(0.0) + 0.0 * z;
+  const S p = linearized(zb, env.seabedSlope(value(x)), x) - z;
+  if (delta > 0.0 && value(p) < delta) return p / delta;
+  return S(1.0) + 0.0 * z;
 }
 
 /// Seabed reactions at the two nodes of a half-grid interval of material m, with the static cap
@@ -57,8 +79,9 @@ S seabedSpring(const Environment& env, const S& x, const S& z) {
 /// grounded line) and remove the only stiffness that mode has, and Newton then diverges.
 template <class S>
 void seabedForces(const Environment& env, const Material& m, const S* Ya, const S* Yb, bool capped, S& Fa, S& Fb) {
-  Fa = seabedSpring(env, Ya[X], Ya[Z]);
-  Fb = seabedSpring(env, Yb[X], Yb[Z]);
+  const double delta = contactOnset(env, m);
+  Fa = seabedSpring(env, Ya[X], Ya[Z], delta);
+  Fb = seabedSpring(env, Yb[X], Yb[Z], delta);
   const double cap = std::max(m.wet_weight, 0.0);
   const S mean = 0.5 * (Fa + Fb);
   if (capped && value(mean) > cap) {

@@ -1,0 +1,617 @@
+#include "mooring_dynamics/core/dynamics2d.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "mooring_dynamics/core/equations2d_dynamic.hpp"
+#include "mooring_dynamics/core/mesh.hpp"
+#include "mooring_dynamics/core/newton.hpp"
+#include "mooring_dynamics/core/statics2d.hpp"
+#include "mooring_dynamics/core/waves.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+using namespace eq2dyn;
+
+namespace {
+
+using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
+using AD8 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
+constexpr int kAnchorRows = 5;
+constexpr int kTopRows = 3;
+const char* const kVarNames[N] = {"eps", "Sn", "u", "v", "phi", "Omega3", "x", "z"};
+
+/// Top kinematics from the problem file's top motion, about the static top (x0, z0).
+std::function<TopInput(double)> topMotionSource(const TopMotion& m, double x0, double z0, const WaveField* waves) {
+  constexpr double kTwoPi = 6.283185307179586;
+  switch (m.type) {
+    case TopMotion::Type::Hold:
+      return [x0, z0](double) {
+        TopInput in;
+        in.x = x0;
+        in.z = z0;
+        return in;
+      };
+    case TopMotion::Type::Sinusoid:
+      return [m, x0, z0](double t) {
+        const double w = kTwoPi / m.period, a = w * t + m.phase;
+        TopInput in;
+        in.x = x0 + m.amplitude_x * (std::sin(a) - std::sin(m.phase));
+        in.z = z0 + m.amplitude_z * (std::sin(a) - std::sin(m.phase));
+        in.vx = m.amplitude_x * w * std::cos(a);
+        in.vz = m.amplitude_z * w * std::cos(a);
+        return in;
+      };
+    case TopMotion::Type::PositionTable:
+    case TopMotion::Type::VelocityTable:
+    case TopMotion::Type::ForceTable:
+      return [m, x0, z0](double t) {
+        const auto& tab = m.table;
+        // Interval and linear weights; held constant outside the table.
+        std::size_t i = 0;
+        while (i + 1 < tab.size() && tab[i + 1].t <= t) ++i;
+        double a = tab[i].a, b = tab[i].b, da = 0.0, db = 0.0;
+        if (t > tab[i].t && i + 1 < tab.size()) {
+          const double w = (t - tab[i].t) / (tab[i + 1].t - tab[i].t);
+          da = (tab[i + 1].a - tab[i].a) / (tab[i + 1].t - tab[i].t);
+          db = (tab[i + 1].b - tab[i].b) / (tab[i + 1].t - tab[i].t);
+          a += w * (tab[i + 1].a - tab[i].a);
+          b += w * (tab[i + 1].b - tab[i].b);
+        } else if (t < tab.front().t) {
+          a = tab.front().a;
+          b = tab.front().b;
+        }
+        TopInput in;
+        if (m.type == TopMotion::Type::ForceTable) {
+          in.force = true;
+          in.fx = a;
+          in.fz = b;
+        } else if (m.type == TopMotion::Type::PositionTable) {
+          in.x = a;
+          in.z = b;
+          in.vx = da;
+          in.vz = db;
+        } else {
+          // Velocity table: position is the exact integral of the piecewise-linear velocity.
+          double x = x0, z = z0, tp = 0.0;
+          auto vel = [&](double tt, double& vx, double& vz) {
+            std::size_t k = 0;
+            while (k + 1 < tab.size() && tab[k + 1].t <= tt) ++k;
+            vx = tab[k].a;
+            vz = tab[k].b;
+            if (tt > tab[k].t && k + 1 < tab.size()) {
+              const double w = (tt - tab[k].t) / (tab[k + 1].t - tab[k].t);
+              vx += w * (tab[k + 1].a - tab[k].a);
+              vz += w * (tab[k + 1].b - tab[k].b);
+            } else if (tt < tab.front().t) {
+              vx = tab.front().a;
+              vz = tab.front().b;
+            }
+          };
+          std::vector<double> knots{0.0};
+          for (const auto& r : tab)
+            if (r.t > 0.0 && r.t < t) knots.push_back(r.t);
+          knots.push_back(t);
+          for (std::size_t k = 1; k < knots.size(); ++k) {
+            double vx0, vz0, vx1, vz1;
+            vel(knots[k - 1], vx0, vz0);
+            vel(knots[k], vx1, vz1);
+            x += 0.5 * (vx0 + vx1) * (knots[k] - knots[k - 1]);
+            z += 0.5 * (vz0 + vz1) * (knots[k] - knots[k - 1]);
+            tp = knots[k];
+          }
+          (void)tp;
+          in.x = x;
+          in.z = z;
+          vel(t, in.vx, in.vz);
+        }
+        return in;
+      };
+    case TopMotion::Type::WaveFollower:
+      return [x0, z0, waves](double t) {
+        TopInput in;
+        in.x = x0;
+        in.z = z0;
+        if (waves && !waves->empty()) {
+          in.z = z0 + waves->elevation(x0, 0.0, t);
+          in.vz = waves->elevationRate(x0, 0.0, t);
+        }
+        return in;
+      };
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------
+
+struct DynamicSolver2D::Impl {
+  Problem problem;
+  Mesh mesh;
+  WaveField waves;
+  GeneralizedAlpha ga;
+  DynamicOptions opt;
+  std::function<TopInput(double)> top;
+  StaticResult statics;
+
+  // Accepted state at time t.
+  double t = 0.0;
+  Eigen::VectorXd Y, Yd;
+  std::vector<Water> water;     ///< water velocity at each node at time t
+  Eigen::VectorXd S;            ///< spatial rows of each interval at time t (8 per interval)
+
+  double chi[N];
+  Totals totals;
+
+  int nodes() const { return static_cast<int>(mesh.nodes.size()); }
+  const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
+
+  Water waterAt(double x, double z, double time) const {
+    Water w;
+    double ux, uy;
+    problem.environment.currentAt(z, ux, uy);
+    w.wx = ux;
+    if (!waves.empty() && z <= 0.0) {
+      double vx, vy, vz;
+      waves.velocity(x, 0.0, z, time, vx, vy, vz);
+      w.wx += vx;
+      w.wz += vz;
+    }
+    return w;
+  }
+
+  void waterField(const Eigen::VectorXd& y, double time, std::vector<Water>& out) const {
+    out.resize(static_cast<std::size_t>(nodes()));
+    for (int j = 0; j < nodes(); ++j) out[static_cast<std::size_t>(j)] = waterAt(y[N * j + X], y[N * j + Z], time);
+  }
+
+  /// Spatial rows of every interval at state y (double).
+  void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out) const {
+    const int n = nodes();
+    out.setZero(N * (n - 1));
+    for (int j = 0; j + 1 < n; ++j) {
+      const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
+      const double* ya = y.data() + N * j;
+      const double* yb = ya + N;
+      double* r = out.data() + N * j;
+      if (iv.h > 0.0)
+        intervalSpatial(problem.environment, problem.materials[iv.material], iv.h, ya, yb, w[j], w[j + 1], r);
+      else
+        junctionForces(problem, iv, mat(j), mat(j + 1), ya, yb, w[static_cast<std::size_t>(j)], r);
+    }
+  }
+};
+
+// --- One time step as a Newton system ----------------------------------------------------------
+//
+// Row layout: 5 anchor rows, 8 rows per interval, 3 top rows; 8 unknowns per node. Interval j
+// touches nodes j and j + 1, so the half-bandwidths are kl = 12, ku = 10.
+
+class DynamicStepSystem : public NewtonSystem {
+ public:
+  DynamicStepSystem(const DynamicSolver2D::Impl& im, double t_new, double dt, const TopInput& top)
+      : im_(im), t_(t_new), dt_(dt), top_(top) {}
+
+  int size() const override { return N * im_.nodes(); }
+  int lowerBandwidth() const override { return 12; }
+  int upperBandwidth() const override { return 10; }
+  double scale(int i) const override { return im_.chi[i % N]; }
+  std::string describe(int i) const override {
+    const std::size_t j = static_cast<std::size_t>(i / N);
+    std::ostringstream os;
+    os << "node " << j << " (s = " << im_.mesh.nodes[j].s << " m) " << kVarNames[i % N];
+    return os.str();
+  }
+  double stepLimit(const Eigen::VectorXd& dY) const override {
+    constexpr double kMaxAngleStep = 0.5;  // [rad], as in statics
+    double largest = 0.0;
+    for (Eigen::Index i = PHI; i < dY.size(); i += N) largest = std::max(largest, std::abs(dY[i]));
+    return largest > kMaxAngleStep ? kMaxAngleStep / largest : 1.0;
+  }
+
+  /// As in statics: a node off the seabed that would pass below its rest penetration stops there
+  /// (Newton sees no foundation under it and would otherwise cycle through the contact).
+  void conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY) const override {
+    const Environment& env = im_.problem.environment;
+    for (int j = 0; j < im_.nodes(); ++j) {
+      const Eigen::Index iz = N * j + Z;
+      const double w = std::max(im_.mat(j).wet_weight, 0.0);
+      const double rest = env.seabedElevation(Y[iz - 1]) - 1.5 * w / env.seabed.stiffness;
+      if (Y[iz] >= rest && Y[iz] + dY[iz] < rest) dY[iz] = rest - Y[iz];
+    }
+  }
+
+  void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override {
+    const int n = im_.nodes();
+    const GeneralizedAlpha& ga = im_.ga;
+    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
+    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
+    R.resize(size());
+    im_.waterField(Y, t_, water_);
+    const Eigen::VectorXd& Yp = im_.Y;
+    const Eigen::VectorXd& Ydp = im_.Yd;
+
+    // Anchor (eq. 34): no motion, moment free, fixed position.
+    R[0] = Y[U];
+    R[1] = Y[V];
+    R[2] = Y[OMEGA];
+    R[3] = Y[X] - im_.problem.anchor_x;
+    R[4] = Y[Z] - im_.problem.anchor_z;
+    if (J) {
+      J->at(0, U) = 1.0;
+      J->at(1, V) = 1.0;
+      J->at(2, OMEGA) = 1.0;
+      J->at(3, X) = 1.0;
+      J->at(4, Z) = 1.0;
+    }
+
+    for (int j = 0; j + 1 < n; ++j) {
+      const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
+      const int row = kAnchorRows + N * j;
+      AD16 y[2 * N], yd[2 * N], ydw[2 * N], yp[2 * N];
+      for (int k = 0; k < 2 * N; ++k) {
+        const int idx = N * j + k;
+        y[k] = AD16(Y[idx], 2 * N, k);
+        yd[k] = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
+        ydw[k] = (1.0 - am) * yd[k] + am * Ydp[idx];  // weighted rate of eq. 30
+        yp[k] = AD16(Yp[idx]);
+        yp[k].derivatives().setZero(2 * N);
+      }
+      const Water& wa = water_[static_cast<std::size_t>(j)];
+      const Water& wb = water_[static_cast<std::size_t>(j) + 1];
+      const Water& wpa = im_.water[static_cast<std::size_t>(j)];
+      const Water& wpb = im_.water[static_cast<std::size_t>(j) + 1];
+      AD16 sp[N], in1[N], in0[N], r[N];
+      int weighted;
+      if (iv.h > 0.0) {
+        const Material& m = im_.problem.materials[iv.material];
+        intervalSpatial(im_.problem.environment, m, iv.h, y, y + N, wa, wb, sp);
+        // Averaged mass matrix (eq. 31) applied to the weighted rate.
+        intervalInertia(im_.problem.environment, m, iv.h, y, y + N, ydw, ydw + N, wa, wb, in1);
+        intervalInertia(im_.problem.environment, m, iv.h, yp, yp + N, ydw, ydw + N, wpa, wpb, in0);
+        weighted = kWeightedRows;
+      } else {
+        junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, sp);
+        junctionInertia(im_.problem, iv, y, ydw, in1);
+        junctionInertia(im_.problem, iv, yp, ydw, in0);
+        junctionConstraints(y, y + N, sp);
+        for (int q = 2; q < N; ++q) in1[q] = in0[q] = AD16(0.0);
+        weighted = 2;
+      }
+      for (int q = 0; q < N; ++q) {
+        if (q < weighted)
+          r[q] = (1.0 - am) * in1[q] + am * in0[q] + (1.0 - ak) * sp[q] + ak * im_.S[N * j + q];  // eq. 30
+        else
+          r[q] = sp[q];  // constraints at the new time level
+        R[row + q] = r[q].value();
+        if (J)
+          for (int k = 0; k < 2 * N; ++k) {
+            const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
+            if (d != 0.0) J->at(row + q, N * j + k) = d;
+          }
+      }
+    }
+
+    // Top: moment free, plus prescribed velocity (eq. 34), position or force.
+    const int top = N * (n - 1);
+    const int row = kAnchorRows + N * (n - 1);
+    AD8 y[N];
+    for (int k = 0; k < N; ++k) y[k] = AD8(Y[top + k], N, k);
+    AD8 r[kTopRows];
+    r[0] = y[OMEGA];
+    if (top_.force) {
+      AD8 Fx, Fz;
+      internalForce(im_.mat(n - 1), y, Fx, Fz);
+      r[1] = Fx - top_.fx;
+      r[2] = Fz - top_.fz;
+    } else if (im_.opt.top_motion.prescribe_position) {
+      r[1] = y[X] - top_.x;
+      r[2] = y[Z] - top_.z;
+    } else {
+      AD8 Vx, Vz;
+      globalVelocity(y, Vx, Vz);
+      r[1] = Vx - top_.vx;
+      r[2] = Vz - top_.vz;
+    }
+    for (int q = 0; q < kTopRows; ++q) {
+      R[row + q] = r[q].value();
+      if (J)
+        for (int k = 0; k < N; ++k)
+          if (r[q].derivatives()[k] != 0.0) J->at(row + q, top + k) = r[q].derivatives()[k];
+    }
+  }
+
+  const std::vector<Water>& water() const { return water_; }
+
+ private:
+  const DynamicSolver2D::Impl& im_;
+  double t_, dt_;
+  TopInput top_;
+  mutable std::vector<Water> water_;
+};
+
+// ------------------------------------------------------------------------------------------------
+
+namespace {
+
+/// Newton state vector (N = 8) from a static result: velocities zero (the line starts at rest).
+Eigen::VectorXd stateFromStatic(const StaticResult& r) {
+  const std::size_t n = r.nodes.size();
+  Eigen::VectorXd Y = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(N * n));
+  for (std::size_t j = 0; j < n; ++j) {
+    double* y = Y.data() + N * j;
+    const NodeState& ns = r.nodes[j];
+    y[EPS] = ns.strain;
+    y[SN] = ns.shear;
+    y[PHI] = ns.angle;
+    y[OMEGA] = ns.curvature;
+    y[X] = ns.x;
+    y[Z] = ns.z;
+  }
+  return Y;
+}
+
+}  // namespace
+
+DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  const std::string err = problem.validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  im.problem = problem;
+  im.opt = problem.dynamics;
+  im.ga = problem.dynamics.scheme;
+  im.mesh = buildMesh(problem);
+  // The dynamic equations have no static cap (eq. 35 caps statics only): start from the
+  // equilibrium of the same seabed model so that the start is at rest.
+  Problem start = problem;
+  start.environment.seabed.static_cap = false;
+  im.statics = solveStatic(start);
+  if (!im.statics.summary.converged)
+    throw std::runtime_error("the static solution that starts the dynamic run did not converge: " +
+                             im.statics.summary.message);
+  if (problem.environment.waves.type != WaveSpec::Type::None)
+    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+
+  const NodeState& topNode = im.statics.nodes.back();
+  const TopMotion& tm = problem.dynamics.top_motion;
+  if (tm.type == TopMotion::Type::PositionTable) {
+    constexpr double kStartMismatch = 0.01;  // [m] the table must start where statics put the top
+    const double x0 = tm.table.front().a, z0 = tm.table.front().b;
+    if (std::hypot(x0 - topNode.x, z0 - topNode.z) > kStartMismatch)
+      throw std::invalid_argument("dynamics.top_motion.table[0] = (" + std::to_string(x0) + ", " + std::to_string(z0) +
+                                  "): must start at the static top position (" + std::to_string(topNode.x) + ", " +
+                                  std::to_string(topNode.z) + ")");
+  }
+  im.top = topMotionSource(tm, topNode.x, topNode.z, &im.waves);
+
+  im.t = 0.0;
+  im.Y = stateFromStatic(im.statics);
+  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
+  im.waterField(im.Y, 0.0, im.water);
+  im.spatialRows(im.Y, im.water, im.S);
+
+  // Error scales chi_m of eq. 39.
+  double Tc = 1.0, stiffest = 0.0;
+  for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
+  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
+  im.chi[EPS] = Tc / stiffest;
+  im.chi[SN] = Tc;
+  im.chi[U] = im.chi[V] = 1.0;  // [m/s]
+  im.chi[PHI] = 1.0;            // [rad]
+  im.chi[OMEGA] = 1.0 / std::max(im.mesh.minSpacing(), 1e-3);
+  im.chi[X] = im.chi[Z] = 1.0;  // [m]
+}
+
+DynamicSolver2D::~DynamicSolver2D() = default;
+
+void DynamicSolver2D::setTopInput(std::function<TopInput(double)> source) { impl_->top = std::move(source); }
+
+double DynamicSolver2D::time() const { return impl_->t; }
+const StaticResult& DynamicSolver2D::initialStatic() const { return impl_->statics; }
+DynamicSolver2D::Totals DynamicSolver2D::totals() const { return impl_->totals; }
+
+std::vector<double> DynamicSolver2D::nodeArclengths() const {
+  std::vector<double> s;
+  for (const auto& n : impl_->mesh.nodes) s.push_back(n.s);
+  return s;
+}
+
+StaticResult DynamicSolver2D::snapshot() const {
+  const Impl& im = *impl_;
+  StaticResult res;
+  const int n = im.nodes();
+  res.nodes.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    const double* y = im.Y.data() + N * j;
+    NodeState& ns = res.nodes[static_cast<std::size_t>(j)];
+    ns.s = im.mesh.nodes[static_cast<std::size_t>(j)].s;
+    ns.x = y[X];
+    ns.z = y[Z];
+    ns.tension = im.mat(j).tension(y[EPS]);
+    ns.shear = y[SN];
+    ns.angle = y[PHI];
+    ns.curvature = y[OMEGA];
+    ns.strain = y[EPS];
+    ns.segment = static_cast<int>(im.mesh.nodes[static_cast<std::size_t>(j)].segment);
+  }
+  internalForce(im.mat(n - 1), im.Y.data() + N * (n - 1), res.top_force_x, res.top_force_z);
+  internalForce(im.mat(0), im.Y.data(), res.anchor_force_x, res.anchor_force_z);
+  res.summary.converged = true;
+  return res;
+}
+
+namespace {
+
+/// One attempted step of size dt from the accepted state; on success the state advances.
+bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
+  const double t_new = im.t + dt;
+  const TopInput top = im.top(t_new);
+  DynamicStepSystem sys(im, t_new, dt, top);
+  Eigen::VectorXd Y = im.Y + dt * im.Yd;  // predictor: constant rate
+  NewtonOptions no;
+  no.tolerance = im.opt.tolerance;
+  no.max_iterations = im.opt.max_iterations;
+  no.mu0 = im.opt.relaxation;
+  no.adaptive = im.opt.adaptive_relaxation;
+  const SolverSummary s = solveNewton(sys, Y, no);
+  rep.newton_iterations += s.iterations;
+  im.totals.newton_iterations += s.iterations;
+  if (!s.converged) {
+    std::ostringstream os;
+    os << "t = " << t_new << " s (dt = " << dt << " s): " << s.message;
+    rep.message = os.str();
+    return false;
+  }
+  // Accept: rates from eq. 26, water and spatial rows at the new level.
+  const double g = im.ga.gamma;
+  im.Yd = (Y - im.Y) / (g * dt) - ((1.0 - g) / g) * im.Yd;
+  im.Y = Y;
+  im.t = t_new;
+  im.water = sys.water();
+  im.spatialRows(im.Y, im.water, im.S);
+  ++rep.steps;
+  ++im.totals.steps;
+  rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
+  return true;
+}
+
+/// Section 4.3: on failure cut the step by 10 and take ten sub-steps, recursively.
+bool advanceStep(DynamicSolver2D::Impl& im, double dt, int level, StepReport& rep) {
+  if (tryStep(im, dt, rep)) return true;
+  if (level >= im.opt.max_cut_levels) {
+    rep.message = "adaptive time stepping exhausted at " + std::to_string(level) +
+                  " cuts (dt = " + std::to_string(dt) + " s): " + rep.message;
+    return false;
+  }
+  ++rep.cuts;
+  ++im.totals.cuts;
+  const double t0 = im.t;
+  for (int k = 1; k <= 10; ++k) {
+    const double target = t0 + dt * k / 10.0;
+    if (!advanceStep(im, target - im.t, level + 1, rep)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+StepReport DynamicSolver2D::advanceTo(double t_end) {
+  Impl& im = *impl_;
+  StepReport rep;
+  const double base = im.opt.dt;
+  const double eps = 1e-9 * base;
+  if (t_end < im.t - eps) {
+    rep.ok = false;
+    rep.message = "advanceTo: t_end = " + std::to_string(t_end) + " s is before the current time " +
+                  std::to_string(im.t) + " s";
+    return rep;
+  }
+  while (im.t < t_end - eps) {
+    const double dt = std::min(base, t_end - im.t);
+    if (!advanceStep(im, dt, 0, rep)) {
+      rep.ok = false;
+      return rep;
+    }
+  }
+  im.t = std::max(im.t, t_end);
+  return rep;
+}
+
+double DynamicSolver2D::jacobianFiniteDifferenceError(double dt) const {
+  const Impl& im = *impl_;
+  DynamicStepSystem sys(im, im.t + dt, dt, im.top(im.t + dt));
+  Eigen::VectorXd Y = im.Y + dt * im.Yd;
+  const int n = sys.size();
+  BandedMatrix J(n, sys.lowerBandwidth(), sys.upperBandwidth());
+  Eigen::VectorXd R(n), Rp(n), Rm(n);
+  sys.evaluate(Y, R, &J);
+  double worst = 0.0;
+  for (int c = 0; c < n; ++c) {
+    const double h = 1e-6 * std::max(1.0, std::abs(Y[c]));
+    Eigen::VectorXd Yp = Y, Ym = Y;
+    Yp[c] += h;
+    Ym[c] -= h;
+    sys.evaluate(Yp, Rp, nullptr);
+    sys.evaluate(Ym, Rm, nullptr);
+    for (int r = 0; r < n; ++r) {
+      const double fd = (Rp[r] - Rm[r]) / (2.0 * h);
+      const double ex = J.inBand(r, c) ? J.get(r, c) : 0.0;
+      worst = std::max(worst, std::abs(fd - ex) / std::max({1.0, std::abs(fd), std::abs(ex)}));
+    }
+  }
+  return worst;
+}
+
+// ------------------------------------------------------------------------------------------------
+
+DynamicSeries runDynamic(const Problem& problem, const std::function<void(double, double)>& progress) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  DynamicSeries out;
+  const DynamicOptions& opt = problem.dynamics;
+  if (!(opt.duration > 0.0)) throw std::invalid_argument("dynamics.duration = " + std::to_string(opt.duration) +
+                                                         ": must be > 0 for a dynamic run");
+  DynamicSolver2D solver(problem);
+  out.initial_static = solver.initialStatic();
+  const std::vector<double> s = solver.nodeArclengths();
+  std::vector<std::size_t> rec;
+  for (double want : opt.record_s) {
+    std::size_t best = 0;
+    for (std::size_t j = 1; j < s.size(); ++j)
+      if (std::abs(s[j] - want) < std::abs(s[best] - want)) best = j;
+    rec.push_back(best);
+    out.record_s.push_back(s[best]);
+  }
+  out.node_tension.assign(rec.size(), {});
+  out.node_x.assign(rec.size(), {});
+  out.node_z.assign(rec.size(), {});
+
+  const double dout = opt.output_interval > 0.0 ? opt.output_interval : opt.dt;
+  const long samples = static_cast<long>(std::floor(opt.duration / dout + 1e-9));
+  const long snap_every = opt.snapshot_interval > 0.0
+                              ? std::max(1L, static_cast<long>(std::llround(opt.snapshot_interval / dout)))
+                              : 0;
+  auto record = [&](double t, long k) {
+    const StaticResult r = solver.snapshot();
+    out.t.push_back(t);
+    out.top_tension.push_back(r.nodes.back().tension);
+    out.anchor_tension.push_back(r.nodes.front().tension);
+    out.top_x.push_back(r.nodes.back().x);
+    out.top_z.push_back(r.nodes.back().z);
+    for (std::size_t i = 0; i < rec.size(); ++i) {
+      out.node_tension[i].push_back(r.nodes[rec[i]].tension);
+      out.node_x[i].push_back(r.nodes[rec[i]].x);
+      out.node_z[i].push_back(r.nodes[rec[i]].z);
+    }
+    if (snap_every > 0 && k % snap_every == 0) {
+      out.snapshots.push_back(r);
+      out.snapshot_t.push_back(t);
+    }
+  };
+  record(0.0, 0);
+  out.completed = true;
+  for (long k = 1; k <= samples; ++k) {
+    const double t = k * dout;
+    const StepReport rep = solver.advanceTo(t);
+    if (!rep.ok) {
+      out.completed = false;
+      out.message = rep.message;
+      break;
+    }
+    record(t, k);
+    if (progress) progress(t, opt.duration);
+  }
+  const auto tot = solver.totals();
+  out.steps = tot.steps;
+  out.cuts = tot.cuts;
+  out.newton_iterations = tot.newton_iterations;
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return out;
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics
