@@ -146,7 +146,7 @@ void StaticSystem2D::conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY
   for (std::size_t j = 0; j < mesh_.nodes.size(); ++j) {
     const Eigen::Index iz = static_cast<Eigen::Index>(N * j + Z);
     const double w = std::max(problem_.materials[mesh_.nodes[j].material].wet_weight, 0.0);
-    const double rest = env.seabedElevation(Y[iz - 1]) - w / env.seabed.stiffness;
+    const double rest = env.seabedElevation(Y[iz - 1]) - 1.5 * w / env.seabed.stiffness;  // resting penetration
     if (Y[iz] >= rest && Y[iz] + dY[iz] < rest) dY[iz] = rest - Y[iz];
   }
 }
