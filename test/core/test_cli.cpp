@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -146,11 +147,12 @@ TEST_F(CliTest, MalformedOptionValuesAreUsageErrors) {
   EXPECT_EQ(run({"static", p.string(), "--spacing-scale", "1e-9"}).code, 2);
 }
 
-TEST_F(CliTest, DynamicIsNotYetImplemented) {
-  const fs::path p = file("good.yaml", kGoodProblem);
-  const RunResult r = run({"dynamic", p.string()});
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("not yet implemented"), std::string::npos) << r.err;
+TEST_F(CliTest, DynamicWithoutDynamicsSectionExitsThree) {
+  const fs::path p = file("good.yaml", kGoodProblem);  // no dynamics: section, so no duration
+  const RunResult r = run({"dynamic", p.string(), "--out", (dir_ / "out").string()});
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("dynamics.duration"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "timeseries.csv"));
 }
 
 // ---- help and version --------------------------------------------------------------------
@@ -314,6 +316,194 @@ TEST_F(CliTest, UnwritableOutputExitsFive) {
   EXPECT_NE(r.err.find("not_a_dir"), std::string::npos) << r.err;
   const RunResult r2 = run({"static", p.string(), "--out", blocker.string()});  // exists, is a file
   EXPECT_EQ(r2.code, 5) << r2.err;
+}
+
+// ---- dynamic and plot ------------------------------------------------------------------------
+
+// A slack suspended line (100 m between points 92 m apart), 10 nodes, heaved at the top for 2 s
+// (positions prescribed, so the top follows the sinusoid exactly).
+const char* const kDynamicProblem = R"(name: small dynamic line
+environment: {depth: 80, seabed: {stiffness: 1.0e6}}
+materials:
+  wire: {EA: 1.0e8, EI: 1.0, GJ: 1.0, mass: 11.82, added_mass: 1.63, wet_weight: 100.0,
+         diameter: 0.045, cdn: 1.2, cdt: 0.01}
+line:
+  - {material: wire, length: 100.0, spacing: 11.5}
+anchor: {x: 0, z: -60}
+top:
+  position: {x: 70, z: 0}
+dynamics:
+  duration: 2
+  dt: 0.1
+  snapshot_interval: 1
+  record_s: [0, 100]
+  top_motion: {type: sinusoid, amplitude_z: 0.5, period: 5, prescribe: position}
+)";
+
+/// Split one CSV line into its cells.
+std::vector<std::string> cells(const std::string& line) {
+  std::vector<std::string> out;
+  std::istringstream in(line);
+  std::string c;
+  while (std::getline(in, c, ',')) out.push_back(c);
+  return out;
+}
+
+std::string lastLine(const std::string& text) {
+  if (text.size() < 2) return text;
+  return text.substr(text.rfind('\n', text.size() - 2) + 1);
+}
+
+bool isPng(const fs::path& p) {
+  const std::string head = readText(p).substr(0, 8);
+  return head == std::string("\x89PNG\r\n\x1a\n", 8);
+}
+
+TEST_F(CliTest, DynamicWritesTimeseriesSnapshotsAndSummary) {
+  const fs::path p = file("dyn.yaml", kDynamicProblem);
+  const fs::path out = dir_ / "dyn";
+  const RunResult r = run({"dynamic", p.string(), "--out", out.string()});
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_TRUE(r.err.empty()) << "no progress bar when stderr is not a terminal: " << r.err;
+  for (const char* s : {"small dynamic line", "completed", "lambda_inf=-0.5", "top tension", "mean", "std", "min",
+                        "max", "static top", "steps", "cuts", "Newton iterations", "wall time", "real-time factor",
+                        "timeseries.csv", "dynamic_summary.json"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << "missing '" << s << "' in:\n" << r.out;
+  EXPECT_EQ(r.out.find("NOT"), std::string::npos) << r.out;
+
+  // Time series: header, then t = 0, 0.1, ..., 2 (21 samples).
+  const std::string ts = readText(out / "timeseries.csv");
+  EXPECT_EQ(ts.substr(0, ts.find('\n')),
+            "t,top_tension,anchor_tension,top_x,top_z,tension_s0,x_s0,z_s0,tension_s100,x_s100,z_s100");
+  EXPECT_EQ(countLines(ts), 1u + 21u) << ts.substr(0, 300);
+  const std::vector<std::string> last = cells(lastLine(ts));
+  ASSERT_EQ(last.size(), 11u);
+  EXPECT_NEAR(std::stod(last[0]), 2.0, 1e-9);
+  // The file's top motion reaches the solver: positions prescribed, so the top is where the heave puts it.
+  EXPECT_NEAR(std::stod(last[3]), 70.0, 1e-6);
+  EXPECT_NEAR(std::stod(last[4]), 0.5 * std::sin(0.8 * 3.14159265358979), 1e-6);
+  EXPECT_NEAR(std::stod(last[9]), std::stod(last[3]), 1e-9);          // the s = 100 node is the top
+  EXPECT_GT(std::stod(last[1]), 0.0);
+
+  // Snapshots every second: t = 0, 1, 2, each with the 10 nodes.
+  const std::string snaps = readText(out / "snapshots.csv");
+  EXPECT_EQ(snaps.rfind("t,node,s,x,z,tension\n", 0), 0u) << snaps.substr(0, 100);
+  EXPECT_EQ(countLines(snaps), 1u + 3u * 10u);
+  EXPECT_EQ(countLines(readText(out / "static_nodes.csv")), 1u + 10u);
+
+  const std::string js = readText(out / "dynamic_summary.json");
+  for (const char* s : {"\"problem\": \"small dynamic line\"", "\"name\": \"lambda_inf=-0.5\"", "\"alpha_m\": ",
+                        "\"alpha_k\": ", "\"gamma\": ", "\"dt\": 0.1", "\"duration\": 2", "\"completed\": true",
+                        "\"message\": ", "\"mean\": ", "\"std\": ", "\"min\": ", "\"max\": ", "\"steps\": ",
+                        "\"cuts\": ", "\"newton_iterations\": ", "\"wall_seconds\": ", "\"real_time_factor\": ",
+                        "\"static_top_tension\": ", "\"samples\": 21"})
+    EXPECT_NE(js.find(s), std::string::npos) << "missing '" << s << "' in:\n" << js;
+}
+
+TEST_F(CliTest, DynamicSchemeAndOverrides) {
+  const fs::path p = file("dyn.yaml", kDynamicProblem);
+  const RunResult box = run({"dynamic", p.string(), "--scheme", "box", "--no-progress", "--out", (dir_ / "box").string()});
+  ASSERT_EQ(box.code, 0) << box.err;
+  EXPECT_NE(box.out.find("box"), std::string::npos) << box.out;
+  const std::string js = readText(dir_ / "box" / "dynamic_summary.json");
+  EXPECT_NE(js.find("\"name\": \"box\", \"alpha_m\": 0.5, \"alpha_k\": 0.5, \"gamma\": 0.5"), std::string::npos) << js;
+
+  const RunResult l = run({"dynamic", p.string(), "--lambda-inf=-0.3", "--duration", "1", "--dt", "0.05", "--out",
+                           (dir_ / "l").string()});
+  ASSERT_EQ(l.code, 0) << l.err;
+  EXPECT_NE(l.out.find("lambda_inf=-0.3"), std::string::npos) << l.out;
+  EXPECT_EQ(countLines(readText(dir_ / "l" / "timeseries.csv")), 1u + 21u);  // 1 s at 0.05 s
+  EXPECT_NE(readText(dir_ / "l" / "dynamic_summary.json").find("\"dt\": 0.05"), std::string::npos);
+
+  // Without --out: summary only, no files.
+  const RunResult none = run({"dynamic", p.string()});
+  ASSERT_EQ(none.code, 0) << none.err;
+  EXPECT_FALSE(fs::exists(dir_ / "timeseries.csv"));
+}
+
+TEST_F(CliTest, DynamicUsageErrors) {
+  const fs::path p = file("dyn.yaml", kDynamicProblem);
+  const std::vector<std::vector<std::string>> bad = {
+      {"dynamic"},
+      {"dynamic", p.string(), "--scheme", "boxx"},
+      {"dynamic", p.string(), "--scheme", "box", "--lambda-inf", "-0.5"},
+      {"dynamic", p.string(), "--lambda-inf", "1"},
+      {"dynamic", p.string(), "--lambda-inf", "x"},
+      {"dynamic", p.string(), "--dt", "0"},
+      {"dynamic", p.string(), "--duration", "-1"},
+      {"dynamic", p.string(), "--no-progress=yes"},
+      {"plot"},
+  };
+  for (const auto& args : bad) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args.back() << ": " << r.err;
+  }
+  const RunResult h = run({"dynamic", "--help"});
+  EXPECT_EQ(h.code, 0);
+  for (const char* o : {"--out", "--duration", "--dt", "--scheme", "--lambda-inf", "--no-progress", "timeseries.csv",
+                        "snapshots.csv", "dynamic_summary.json"})
+    EXPECT_NE(h.out.find(o), std::string::npos) << "missing '" << o << "' in:\n" << h.out;
+  EXPECT_NE(run({"--help"}).out.find("plot"), std::string::npos);
+}
+
+TEST_F(CliTest, DynamicBadKeyExitsThreeAndNamesKey) {
+  std::string text = kDynamicProblem;
+  text.replace(text.find("snapshot_interval"), 17, "snapshot_intervall");
+  const RunResult r = run({"dynamic", file("typo.yaml", text).string(), "--out", (dir_ / "out").string()});
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("dynamics.snapshot_intervall"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("unknown key"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "timeseries.csv"));
+
+  std::string bad_dt = kDynamicProblem;
+  bad_dt.replace(bad_dt.find("dt: 0.1"), 7, "dt: -0.1");
+  const RunResult d = run({"dynamic", file("bad_dt.yaml", bad_dt).string()});
+  EXPECT_EQ(d.code, 3) << d.err;
+  EXPECT_NE(d.err.find("dynamics.dt = -0.1"), std::string::npos) << d.err;
+}
+
+TEST_F(CliTest, DynamicRunThatStopsExitsFourAndWritesWhatItHas) {
+  // One Newton iteration per step and no step cutting: the first step cannot converge.
+  std::string text = kDynamicProblem;
+  text += "  max_iterations: 1\n  max_cut_levels: 0\n  tolerance: 1.0e-12\n";
+  const fs::path out = dir_ / "out";
+  const RunResult r = run({"dynamic", file("stop.yaml", text).string(), "--out", out.string()});
+  EXPECT_EQ(r.code, 4) << r.out << r.err;
+  EXPECT_NE(r.err.find("stopped"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("did NOT complete"), std::string::npos) << r.out;
+  ASSERT_TRUE(fs::exists(out / "timeseries.csv"));
+  EXPECT_GE(countLines(readText(out / "timeseries.csv")), 2u);  // header and at least t = 0
+  EXPECT_LT(countLines(readText(out / "timeseries.csv")), 22u);
+  EXPECT_NE(readText(out / "dynamic_summary.json").find("\"completed\": false"), std::string::npos);
+}
+
+TEST_F(CliTest, PlotWritesPngs) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "gnuplot not installed (scripts/setup installs gnuplot-nox)";
+  const fs::path p = file("dyn.yaml", kDynamicProblem);
+  const fs::path out = dir_ / "dyn";
+  ASSERT_EQ(run({"dynamic", p.string(), "--out", out.string()}).code, 0);
+
+  const RunResult r = run({"plot", out.string()});
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  for (const char* png : {"top_tension.png", "shapes.png"}) {
+    ASSERT_TRUE(fs::exists(out / png)) << png;
+    EXPECT_GT(fs::file_size(out / png), 1000u) << png;
+    EXPECT_TRUE(isPng(out / png)) << png;
+  }
+  EXPECT_NE(readText(out / "plot.gp").find("small dynamic line"), std::string::npos) << "title names the problem";
+
+  const fs::path pngs = dir_ / "pngs" / "nested";
+  const RunResult r2 = run({"plot", out.string(), "--out", pngs.string()});
+  ASSERT_EQ(r2.code, 0) << r2.err;
+  EXPECT_TRUE(isPng(pngs / "top_tension.png"));
+  EXPECT_TRUE(isPng(pngs / "shapes.png"));
+}
+
+TEST_F(CliTest, PlotWithoutResultsExitsThree) {
+  const RunResult r = run({"plot", dir_.string()});
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("timeseries.csv"), std::string::npos) << r.err;
 }
 
 }  // namespace
