@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mooring_dynamics/core/adaptive_mesh.hpp"
 #include "mooring_dynamics/core/equations2d_dynamic.hpp"
 #include "mooring_dynamics/core/mesh.hpp"
 #include "mooring_dynamics/core/newton.hpp"
@@ -365,12 +366,17 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   im.problem = problem;
   im.opt = problem.dynamics;
   im.ga = problem.dynamics.scheme;
-  im.mesh = buildMesh(problem);
   // The dynamic equations have no static cap (eq. 35 caps statics only): start from the
   // equilibrium of the same seabed model so that the start is at rest.
   Problem start = problem;
   start.environment.seabed.static_cap = false;
-  im.statics = solveStatic(start);
+  im.mesh = buildMesh(problem);
+  im.statics = solveStaticOnMesh(start, im.mesh, start.static_options);
+  if (im.statics.summary.converged && problem.dynamics.adaptive_mesh) {
+    // Section 3: redistribute the nodes by eq. 22 from the uniform-mesh statics, re-solve.
+    im.mesh = buildAdaptiveMesh(start, im.mesh, im.statics, problem.dynamics.mesh_weight);
+    im.statics = solveStaticOnMesh(start, im.mesh, start.static_options);
+  }
   if (!im.statics.summary.converged)
     throw std::runtime_error("the static solution that starts the dynamic run did not converge: " +
                              im.statics.summary.message);
@@ -594,8 +600,10 @@ DynamicSeries runDynamic(const Problem& problem, const std::function<void(double
   };
   record(0.0, 0);
   out.completed = true;
-  for (long k = 1; k <= samples; ++k) {
-    const double t = k * dout;
+  // Output grid k * dout, plus the end time when the duration is not a whole multiple of it.
+  const bool partial_end = opt.duration - samples * dout > 1e-9 * dout;
+  for (long k = 1; k <= samples + (partial_end ? 1 : 0); ++k) {
+    const double t = k <= samples ? k * dout : opt.duration;
     const StepReport rep = solver.advanceTo(t);
     if (!rep.ok) {
       out.completed = false;

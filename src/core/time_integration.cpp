@@ -26,7 +26,9 @@ GeneralizedAlpha GeneralizedAlpha::preset(const std::string& name) {
   else if (name == "backward") { g.alpha_m = 0.0; g.alpha_k = 0.0; g.gamma = 1.0; }
   else if (name == "lambda0") { g = fromLambdaInf(0.0); }
   else if (name == "lambda-0.5") { g = fromLambdaInf(-0.5); }
-  else if (name == "lambda0.75") { g.alpha_m = -6.5; g.alpha_k = 3.0; g.gamma = 4.0; }
+  // Table 1 prints alpha_k = +3.0 for this row (and swaps alpha_m and alpha_k in the lambda_inf = 0
+  // row); eq. 29 gives alpha_k = -3.0, which makes the scheme second order (eq. 27).
+  else if (name == "lambda0.75") { g = fromLambdaInf(0.75); }
   else
     throw std::invalid_argument("scheme = \"" + name +
                                 "\": unknown (known: box, trapezoidal, backward, lambda0, lambda-0.5, lambda0.75)");
