@@ -98,6 +98,10 @@ double jonswapNormalisation(double gamma) {
 }
 
 /// Depth factors ch = cosh(k(z+h))/sinh(kh), sh = sinh(k(z+h))/sinh(kh), z already in [-h, 0].
+/// Wave-particle velocity below which a component is left out of the sum [m/s]: far below what
+/// changes the drag of any cable.
+constexpr double kNegligibleVelocity = 1e-12;
+
 void depthFactors(double k, double z, double h, double& ch, double& sh) {
   const double kh = k * h;
   if (kh > kDeepKh) {
@@ -295,10 +299,13 @@ void WaveField::velocity(double x, double y, double z, double t, double& vx, dou
   if (components_.empty()) return;
   const double zc = std::min(0.0, std::max(-depth_, z));
   for (const auto& c : components_) {
+    const double aw = c.amplitude * c.omega;
+    // In deep water the factors are about e^{kz}: skip a component whose velocity at this depth
+    // is below kNegligibleVelocity (most of a deep line sees none of the short waves).
+    if (c.k * depth_ > kDeepKh && aw * std::exp(c.k * zc) < kNegligibleVelocity) continue;
     double ch, sh;
     depthFactors(c.k, zc, depth_, ch, sh);
     const double th = phaseOf(c, x, y, t);
-    const double aw = c.amplitude * c.omega;
     const double uh = aw * ch * std::cos(th);
     vx += uh * std::cos(c.direction);
     vy += uh * std::sin(c.direction);
