@@ -1,0 +1,45 @@
+#include "mooring_dynamics/ros/run_node.hpp"
+
+#include <exception>
+#include <memory>
+#include <string>
+
+#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/ros/lockstep_node.hpp"
+#include "mooring_dynamics/ros/static_node.hpp"
+
+namespace mooring_dynamics {
+namespace ros_bridge {
+
+int runNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
+  std::string mode;
+  pnh.param<std::string>("mode", mode, "static");
+  std::unique_ptr<StaticNode> static_node;
+  std::unique_ptr<LockstepNode> lockstep_node;
+  try {
+    if (mode == "static") {
+      static_node = std::make_unique<StaticNode>(nh, pnh);
+    } else if (mode == "dynamic") {
+      lockstep_node = std::make_unique<LockstepNode>(nh, pnh);
+    } else {
+      ROS_FATAL("mooring_dynamics: parameter %s = \"%s\": must be \"static\" or \"dynamic\"",
+                pnh.resolveName("mode").c_str(), mode.c_str());
+      ros::shutdown();
+      return 1;
+    }
+  } catch (const core::ProblemError& e) {
+    ROS_FATAL("mooring_dynamics: cannot load the problem: %s", e.what());
+    ros::shutdown();
+    return 1;
+  } catch (const std::exception& e) {
+    ROS_FATAL("mooring_dynamics: %s", e.what());
+    ros::shutdown();
+    return 1;
+  }
+  if (static_node) static_node->start();
+  ros::spin();
+  return 0;
+}
+
+}  // namespace ros_bridge
+}  // namespace mooring_dynamics
