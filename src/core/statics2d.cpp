@@ -147,7 +147,10 @@ void StaticSystem2D::conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY
     const Eigen::Index iz = static_cast<Eigen::Index>(N * j + Z);
     const double w = std::max(problem_.materials[mesh_.nodes[j].material].wet_weight, 0.0);
     const double rest = env.seabedElevation(Y[iz - 1]) - 1.5 * w / env.seabed.stiffness;  // resting penetration
-    if (Y[iz] >= rest && Y[iz] + dY[iz] < rest) dY[iz] = rest - Y[iz];
+    // Only a node out of contact is stopped; one already on the bottom may go deeper, except
+    // under the static cap, where nothing pushes a node back up from below its resting depth.
+    const double from = capped_ ? rest : env.seabedElevation(Y[iz - 1]);
+    if (Y[iz] >= from && Y[iz] + dY[iz] < rest) dY[iz] = rest - Y[iz];
   }
 }
 

@@ -27,9 +27,9 @@ LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const Lo
   problem_.dynamics.dt = dt;
   problem_.dynamics.output_interval = 0.0;
   // The samples drive the top: the file's top motion is not used (a position table would also
-  // have to start at every re-initialisation's top). Keep how the top kinematics are imposed.
+  // have to start at every re-initialisation's top).
   core::TopMotion hold;
-  hold.prescribe_position = problem.dynamics.top_motion.prescribe_position;
+  hold.prescribe_position = true;  // follow the vessel track: velocity with position feedback (no drift)
   problem_.dynamics.top_motion = hold;
   if (problem_.dynamics.duration <= 0.0) problem_.dynamics.duration = dt;  // unused in lockstep
 
