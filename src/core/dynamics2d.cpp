@@ -321,10 +321,11 @@ class DynamicStepSystem : public NewtonSystem {
       // position is a constraint on the integral of the line's shape from the anchor, which the
       // generalized-alpha schemes with rho_inf > 0 do not damp when imposed directly (it blew up
       // within a second, test_dynamics2d); fed back through the velocity it decays with
-      // time constant kPositionFeedbackSteps * dt and the drift of the plain velocity
+      // time constant kPositionFeedbackSteps * dt (the BASE step: a cut step must not raise the
+      // gain, or an offset becomes a huge velocity) and the drift of the plain velocity
       // condition vanishes.
       constexpr double kPositionFeedbackSteps = 5.0;
-      const double kappa = 1.0 / (kPositionFeedbackSteps * dt_);
+      const double kappa = 1.0 / (kPositionFeedbackSteps * im_.opt.dt);
       AD8 Vx, Vz;
       globalVelocity(y, Vx, Vz);
       r[1] = Vx - top_.vx - kappa * (top_.x - y[X]);

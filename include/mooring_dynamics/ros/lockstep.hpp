@@ -33,7 +33,7 @@ namespace mooring_dynamics {
 namespace ros_bridge {
 
 struct LockstepOptions {
-  double start_tolerance = 0.5;  ///< [m] first sample farther than this from the static top: re-solve statics there
+  double start_tolerance = 0.01;  ///< [m] first sample farther than this from the static top: re-solve statics there
   double loop_back = 1.0;        ///< [s] time going back by more than this re-initialises (bag loop)
 };
 
