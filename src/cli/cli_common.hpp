@@ -1,0 +1,95 @@
+// Internal to cable_sim (not installed): what the parser in cli_app.cpp and the subcommands in
+// cmd_static.cpp, cmd_dynamic.cpp and cmd_plot.cpp share. Exit codes are in cli_app.hpp.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cli_app.hpp"
+
+namespace mooring_dynamics {
+namespace cli {
+namespace detail {
+
+namespace fs = std::filesystem;
+
+inline constexpr const char* kProg = "cable_sim";
+
+/// A command-line mistake: reported with a hint to --help, exit code 2.
+class UsageError : public std::runtime_error {
+ public:
+  explicit UsageError(const std::string& what) : std::runtime_error(what) {}
+};
+
+// ---------------------------------------------------------------------------------------------
+// Parsed command line (filled by the parser in cli_app.cpp)
+
+struct OptionSpec {
+  const char* name;     ///< long name without the leading "--"
+  char short_name;      ///< single-letter alias, 0 if none
+  const char* metavar;  ///< placeholder of the value; nullptr for a flag without value
+  const char* help;
+};
+
+struct ParsedArgs {
+  std::map<std::string, std::string> values;  ///< options with a value (the last one given wins)
+  std::set<std::string> flags;                ///< flags and options that were given
+  std::vector<std::string> positionals;
+
+  bool has(const std::string& name) const { return flags.count(name) != 0; }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Option values (cli_app.cpp); each throws UsageError naming the option on a malformed value
+
+double parsePositiveDouble(const std::string& option, const std::string& text);
+std::size_t parsePositiveInt(const std::string& option, const std::string& text);
+double parseFiniteDouble(const std::string& option, const std::string& text, const std::string& what);
+
+// ---------------------------------------------------------------------------------------------
+// Number formatting (cli_app.cpp)
+
+/// printf-style formatting of one number.
+std::string fmtNum(const char* f, double v);
+/// CSV number: 12 significant digits (well below the solver tolerance), non-finite spelled out.
+std::string csvNum(double v);
+
+// ---------------------------------------------------------------------------------------------
+// Output files
+
+/// Write `what` to `path` with `writer`; false (and a message on err) on any I/O failure.
+template <class Writer>
+bool writeFile(const fs::path& path, Writer writer, std::ostream& err) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  if (!f) {
+    err << kProg << ": error: cannot open '" << path.string() << "' for writing\n";
+    return false;
+  }
+  writer(f);
+  f.flush();
+  f.close();
+  if (f.fail()) {
+    err << kProg << ": error: failed writing '" << path.string() << "'\n";
+    return false;
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Subcommands: run functions of the table in cli_app.cpp. UsageError for command-line mistakes,
+// otherwise one of ExitCode.
+
+int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err);      // cmd_static.cpp
+int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err);  // cmd_dynamic.cpp
+int runPlot(const ParsedArgs& args, std::ostream& out, std::ostream& err);        // cmd_plot.cpp
+
+}  // namespace detail
+}  // namespace cli
+}  // namespace mooring_dynamics

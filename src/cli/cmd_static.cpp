@@ -1,0 +1,106 @@
+// cable_sim static: static equilibrium of a problem file.
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "cli_common.hpp"
+#include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/result.hpp"
+#include "mooring_dynamics/core/result_io.hpp"
+#include "mooring_dynamics/core/statics2d.hpp"
+
+namespace mooring_dynamics {
+namespace cli {
+namespace detail {
+namespace {
+
+/// Upper bound on the node count a --spacing-scale may produce (guards against typos like 1e-9).
+constexpr double kMaxScaledNodes = 1.0e7;
+
+}  // namespace
+
+int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
+  if (args.positionals.size() != 1)
+    throw UsageError(args.positionals.empty() ? "missing PROBLEM.yaml"
+                                              : "expected one problem file, got " +
+                                                    std::to_string(args.positionals.size()) + " arguments");
+  const std::string problem_path = args.positionals.front();
+  const bool want_table = args.has("table") || args.has("table-stride");
+  const std::size_t stride =
+      args.has("table-stride") ? parsePositiveInt("table-stride", args.values.at("table-stride")) : 1;
+  const double spacing_scale =
+      args.has("spacing-scale") ? parsePositiveDouble("spacing-scale", args.values.at("spacing-scale")) : 1.0;
+  const std::string out_dir = args.has("out") ? args.values.at("out") : std::string();
+  if (args.has("out") && out_dir.empty()) throw UsageError("option '--out' needs a directory, got ''");
+
+  // Load.
+  core::Problem problem;
+  try {
+    problem = core::loadProblemFromFile(problem_path);
+  } catch (const core::ProblemError& e) {
+    err << kProg << ": error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {  // anything the loader did not wrap is still a bad file
+    err << kProg << ": error: " << problem_path << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
+
+  // Refinement studies: scale every segment's node spacing.
+  if (spacing_scale != 1.0) {
+    double nodes = 1.0;
+    for (auto& seg : problem.segments) {
+      seg.spacing *= spacing_scale;
+      if (seg.spacing > 0.0) nodes += std::ceil(seg.length / seg.spacing);
+    }
+    if (nodes > kMaxScaledNodes)
+      throw UsageError("--spacing-scale " + args.values.at("spacing-scale") + " gives about " +
+                       std::to_string(static_cast<long long>(nodes)) + " nodes (limit " +
+                       std::to_string(static_cast<long long>(kMaxScaledNodes)) + ")");
+  }
+
+  // Solve.
+  core::StaticResult result;
+  try {
+    result = core::solveStatic(problem);
+  } catch (const std::invalid_argument& e) {
+    err << kProg << ": error: " << problem_path << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
+
+  out << core::staticSummaryText(problem, result);
+  if (want_table) out << "\n" << core::staticTableText(result, stride);
+
+  // Outputs (written also when the solver did not converge: the JSON says so).
+  if (!out_dir.empty()) {
+    const fs::path dir(out_dir);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir, ec)) {
+      err << kProg << ": error: cannot create output directory '" << out_dir << "'"
+          << (ec ? " (" + ec.message() + ")" : std::string(" (exists and is not a directory)")) << "\n";
+      return kExitIo;
+    }
+    const fs::path json = dir / "static.json";
+    const fs::path csv = dir / "static_nodes.csv";
+    if (!writeFile(json, [&](std::ostream& f) { core::writeStaticJson(f, problem, result); }, err)) return kExitIo;
+    if (!writeFile(csv, [&](std::ostream& f) { core::writeStaticCsv(f, result); }, err)) return kExitIo;
+    out << "wrote " << json.string() << " and " << csv.string() << "\n";
+  }
+
+  if (!result.summary.converged) {
+    err << kProg << ": error: solver did not converge after " << result.summary.iterations << " iterations";
+    if (!result.summary.message.empty()) err << " (" << result.summary.message << ")";
+    err << (out_dir.empty() ? "" : "; results written and marked \"converged\": false") << "\n";
+    return kExitNotConverged;
+  }
+  return kExitOk;
+}
+
+}  // namespace detail
+}  // namespace cli
+}  // namespace mooring_dynamics
