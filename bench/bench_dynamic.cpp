@@ -1,0 +1,188 @@
+// Dynamic-solver cost (paper sections 4 and 6: generalized-alpha step, Newton with adaptive
+// relaxation, banded LU on the half-grid box scheme).
+//
+// BM_DynamicStepCost/<nodes>: cost of one time step against node count. A grounded chain (the
+// line of bench_static: 250 m of 76 mm chain in 100 m of water, top held at (200, 0), about 100 m
+// on the bottom) is heaved at the top, z = z0 + 1 m (1 - cos(2 pi t / 10 s)), which starts from
+// rest so no start-up transient forces step cuts; lambda_inf = -0.5, dt = 0.1 s, 50 steps (5 s)
+// per iteration. Only advanceTo() is timed (manual time); building the mesh and the static start
+// is not. Counters: nodes, steps, cuts, newton_iters (per iteration of the benchmark, i.e. per
+// 50 steps; scripts/bench divides the wall time by nodes * newton_iters), newton_per_step,
+// ns_per_step_node (wall time / (steps * nodes)).
+//
+// BM_ChainMooringRealTimeFactor: the paper's A.3 all-chain mooring (config/chain_mooring.yaml,
+// 2 m / 8 s heave, dt 0.1 s, lambda_inf = -0.5 as shipped), 60 s of simulated time through
+// runDynamic (static start, time stepping and recording, as `cable_sim dynamic`). Counter
+// real_time_factor = 60 s / wall time. The file is found through the environment variable MD_ROOT
+// (exported by scripts/env.sh); without it, through the CMakeCache.txt of the build folder the
+// executable sits in (<build>/devel/lib/mooring_dynamics/bench_dynamic).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "mooring_dynamics/core/dynamics2d.hpp"
+#include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/problem_io.hpp"
+
+namespace md = mooring_dynamics::core;
+
+namespace {
+
+constexpr double kDt = 0.1;        // [s] base step
+constexpr int kSteps = 50;         // base steps per benchmark iteration
+constexpr double kTwoPi = 6.283185307179586;
+
+md::Problem heavedChain(int nodes) {
+  md::Problem p;
+  p.name = "bench heaved chain with seabed contact";
+  p.environment.depth = 100.0;
+  p.environment.seabed.stiffness = 1.0e6;
+  p.environment.seabed.damping = 2.0e4;  // ~ a quarter of critical 2 sqrt(k (m + ma))
+
+  md::Material chain;
+  chain.name = "chain76";
+  chain.EA = 5.4e8;
+  chain.EI = 10.0;
+  chain.GJ = 1.0;
+  chain.mass = 115.0;
+  chain.added_mass = 14.0;
+  chain.wet_weight = 980.0;
+  chain.diameter = 0.137;
+  chain.cdn = 2.4;
+  chain.cdt = 1.15;
+  p.materials.push_back(chain);
+
+  md::Segment seg;
+  seg.material = 0;
+  seg.length = 250.0;
+  seg.spacing = seg.length / (nodes - 1);  // nodes - 1 intervals
+  p.segments.push_back(seg);
+
+  p.anchor_x = 0.0;
+  p.anchor_z = -100.0;
+  p.top.type = md::TopBoundary::Type::Position;
+  p.top.x = 200.0;
+  p.top.z = 0.0;
+
+  md::DynamicOptions& d = p.dynamics;
+  d.duration = kSteps * kDt;
+  d.dt = kDt;
+  d.scheme = md::GeneralizedAlpha::fromLambdaInf(-0.5);
+  d.scheme_name = "lambda_inf=-0.5";
+  d.top_motion.type = md::TopMotion::Type::Sinusoid;
+  d.top_motion.amplitude_z = 1.0;
+  d.top_motion.period = 10.0;
+  d.top_motion.phase = -0.25 * kTwoPi;  // z0 + a (1 - cos(2 pi t / T)): starts at rest
+  return p;
+}
+
+void BM_DynamicStepCost(benchmark::State& state) {
+  const int nodes = static_cast<int>(state.range(0));
+  const md::Problem problem = heavedChain(nodes);
+  long steps = 0, cuts = 0, newton = 0, iterations = 0;
+  std::size_t node_count = 0;
+  double seconds = 0.0;
+  for (auto _ : state) {
+    md::DynamicSolver2D solver(problem);  // mesh + static start: not timed (manual time below)
+    node_count = solver.nodeArclengths().size();
+    const auto t0 = std::chrono::steady_clock::now();
+    const md::StepReport rep = solver.advanceTo(kSteps * kDt);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    state.SetIterationTime(dt);
+    if (!rep.ok) {
+      state.SkipWithError(("dynamic run failed: " + rep.message).c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(solver.time());
+    seconds += dt;
+    steps += rep.steps;
+    cuts += rep.cuts;
+    newton += rep.newton_iterations;
+    ++iterations;
+  }
+  if (iterations == 0) return;
+  const double n = static_cast<double>(iterations);
+  state.counters["nodes"] = static_cast<double>(node_count);
+  state.counters["steps"] = static_cast<double>(steps) / n;
+  state.counters["cuts"] = static_cast<double>(cuts) / n;
+  state.counters["newton_iters"] = static_cast<double>(newton) / n;
+  state.counters["newton_per_step"] = static_cast<double>(newton) / static_cast<double>(steps);
+  state.counters["ns_per_step_node"] = 1e9 * seconds / (static_cast<double>(steps) * static_cast<double>(node_count));
+}
+
+/// The package root: $MD_ROOT, else the source folder recorded in the CMakeCache.txt three levels
+/// above this executable. Empty when neither is found.
+std::string packageRoot() {
+  if (const char* env = std::getenv("MD_ROOT"); env != nullptr && *env != '\0') return env;
+  char buf[4096];
+  const ssize_t len = ::readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+  if (len <= 0) return {};
+  std::string exe(buf, static_cast<std::size_t>(len));
+  for (int up = 0; up < 4; ++up) exe = exe.substr(0, exe.find_last_of('/'));  // strip name + 3 dirs
+  std::ifstream cache(exe + "/CMakeCache.txt");
+  const std::string key = "mooring_dynamics_SOURCE_DIR:STATIC=";
+  for (std::string line; std::getline(cache, line);)
+    if (line.rfind(key, 0) == 0) return line.substr(key.size());
+  return {};
+}
+
+void BM_ChainMooringRealTimeFactor(benchmark::State& state) {
+  constexpr double kDuration = 60.0;  // [s] simulated
+  const std::string root = packageRoot();
+  if (root.empty()) {
+    state.SkipWithError("config/chain_mooring.yaml not found: set MD_ROOT (source scripts/env.sh)");
+    return;
+  }
+  md::Problem problem;
+  try {
+    problem = md::loadProblemFromFile(root + "/config/chain_mooring.yaml");
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  problem.dynamics.duration = kDuration;
+  problem.dynamics.snapshot_interval = 0.0;  // the run, not the copies of whole-line snapshots
+  md::DynamicSeries r;
+  double seconds = 0.0;
+  long iterations = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    r = md::runDynamic(problem);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    benchmark::DoNotOptimize(r.top_tension.data());
+    ++iterations;
+    if (!r.completed) {
+      state.SkipWithError(("run stopped early: " + r.message).c_str());
+      return;
+    }
+  }
+  if (iterations == 0) return;
+  state.counters["nodes"] = static_cast<double>(r.initial_static.nodes.size());
+  state.counters["steps"] = static_cast<double>(r.steps);
+  state.counters["cuts"] = static_cast<double>(r.cuts);
+  state.counters["newton_iters"] = static_cast<double>(r.newton_iterations);
+  state.counters["newton_per_step"] = static_cast<double>(r.newton_iterations) / static_cast<double>(r.steps);
+  state.counters["real_time_factor"] = kDuration * static_cast<double>(iterations) / seconds;
+}
+
+}  // namespace
+
+BENCHMARK(BM_DynamicStepCost)
+    ->Arg(50)
+    ->Arg(100)
+    ->Arg(200)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK(BM_ChainMooringRealTimeFactor)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
