@@ -29,6 +29,7 @@
 #include "mooring_dynamics/core/dynamics2d.hpp"
 #include "mooring_dynamics/core/model.hpp"
 #include "mooring_dynamics/core/problem_io.hpp"
+#include "bench_problems.hpp"
 
 namespace md = mooring_dynamics::core;
 
@@ -39,36 +40,9 @@ constexpr int kSteps = 50;         // base steps per benchmark iteration
 constexpr double kTwoPi = 6.283185307179586;
 
 md::Problem heavedChain(int nodes) {
-  md::Problem p;
+  md::Problem p = mooring_dynamics::bench::chainWithSeabed(nodes);
   p.name = "bench heaved chain with seabed contact";
-  p.environment.depth = 100.0;
-  p.environment.seabed.stiffness = 1.0e6;
   p.environment.seabed.damping = 2.0e4;  // ~ a quarter of critical 2 sqrt(k (m + ma))
-
-  md::Material chain;
-  chain.name = "chain76";
-  chain.EA = 5.4e8;
-  chain.EI = 10.0;
-  chain.GJ = 1.0;
-  chain.mass = 115.0;
-  chain.added_mass = 14.0;
-  chain.wet_weight = 980.0;
-  chain.diameter = 0.137;
-  chain.cdn = 2.4;
-  chain.cdt = 1.15;
-  p.materials.push_back(chain);
-
-  md::Segment seg;
-  seg.material = 0;
-  seg.length = 250.0;
-  seg.spacing = seg.length / (nodes - 1);  // nodes - 1 intervals
-  p.segments.push_back(seg);
-
-  p.anchor_x = 0.0;
-  p.anchor_z = -100.0;
-  p.top.type = md::TopBoundary::Type::Position;
-  p.top.x = 200.0;
-  p.top.z = 0.0;
 
   md::DynamicOptions& d = p.dynamics;
   d.duration = kSteps * kDt;
