@@ -157,6 +157,15 @@ struct DynamicSolver2D::Impl {
     double ux, uy;
     problem.environment.currentAt(z, ux, uy);
     w.wx = ux;
+    w.z = z;
+    if (problem.environment.current.size() > 1) {
+      // Slope of the piecewise-linear profile (exact inside a table interval), as in statics.
+      constexpr double kDz = 1e-6;  // [m]
+      double up, um, vy;
+      problem.environment.currentAt(z + kDz, up, vy);
+      problem.environment.currentAt(z - kDz, um, vy);
+      w.dwx_dz = (up - um) / (2.0 * kDz);
+    }
     if (!waves.empty() && z <= 0.0) {
       double vx, vy, vz;
       waves.velocity(x, 0.0, z, time, vx, vy, vz);
@@ -548,26 +557,8 @@ StepReport DynamicSolver2D::advanceTo(double t_end) {
 double DynamicSolver2D::jacobianFiniteDifferenceError(double dt) const {
   const Impl& im = *impl_;
   DynamicStepSystem sys(im, im.t + dt, dt, im.top(im.t + dt));
-  Eigen::VectorXd Y = im.Y + dt * im.Yd;
-  const int n = sys.size();
-  BandedMatrix J(n, sys.lowerBandwidth(), sys.upperBandwidth());
-  Eigen::VectorXd R(n), Rp(n), Rm(n);
-  sys.evaluate(Y, R, &J);
-  double worst = 0.0;
-  for (int c = 0; c < n; ++c) {
-    const double h = 1e-6 * std::max(1.0, std::abs(Y[c]));
-    Eigen::VectorXd Yp = Y, Ym = Y;
-    Yp[c] += h;
-    Ym[c] -= h;
-    sys.evaluate(Yp, Rp, nullptr);
-    sys.evaluate(Ym, Rm, nullptr);
-    for (int r = 0; r < n; ++r) {
-      const double fd = (Rp[r] - Rm[r]) / (2.0 * h);
-      const double ex = J.inBand(r, c) ? J.get(r, c) : 0.0;
-      worst = std::max(worst, std::abs(fd - ex) / std::max({1.0, std::abs(fd), std::abs(ex)}));
-    }
-  }
-  return worst;
+  const JacobianCheck c = checkJacobian(sys, im.Y + dt * im.Yd);
+  return c.outside_band ? 1.0 : c.worst;
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -92,5 +92,38 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
   return summary;
 }
 
+JacobianCheck checkJacobian(NewtonSystem& system, const Eigen::VectorXd& Y) {
+  JacobianCheck out;
+  const int n = system.size();
+  BandedMatrix J(n, system.lowerBandwidth(), system.upperBandwidth());
+  Eigen::VectorXd R(n), Rp(n), Rm(n);
+  system.evaluate(Y, R, &J);
+  for (int c = 0; c < n; ++c) {
+    const double h = 1e-6 * std::max(1.0, std::abs(Y[c]));
+    Eigen::VectorXd Yp = Y, Ym = Y;
+    Yp[c] += h;
+    Ym[c] -= h;
+    system.evaluate(Yp, Rp, nullptr);
+    system.evaluate(Ym, Rm, nullptr);
+    for (int r = 0; r < n; ++r) {
+      const double fd = (Rp[r] - Rm[r]) / (2.0 * h);
+      if (!J.inBand(r, c)) {
+        if (fd != 0.0) out.outside_band = true;
+        continue;
+      }
+      const double ex = J.get(r, c);
+      const double e = std::abs(fd - ex) / std::max({1.0, std::abs(fd), std::abs(ex)});
+      if (e > out.worst) {
+        out.worst = e;
+        out.row = r;
+        out.column = c;
+        out.exact = ex;
+        out.finite_difference = fd;
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace core
 }  // namespace mooring_dynamics

@@ -58,7 +58,8 @@ class DynamicSolver2D {
   std::vector<double> nodeArclengths() const;
 
   /// Diagnostic: largest relative difference between the assembled Jacobian of a step of size dt
-  /// from the current state (at the predictor) and central finite differences of its residual.
+  /// from the current state (at the predictor) and central finite differences of its residual
+  /// (checkJacobian, newton.hpp); 1 when a coupling falls outside the band.
   double jacobianFiniteDifferenceError(double dt) const;
 
   struct Totals {

@@ -23,11 +23,21 @@ enum Var { EPS = 0, SN = 1, U = 2, V = 3, PHI = 4, OMEGA = 5, X = 6, Z = 7 };
 /// Rows 6 and 7 (coordinates, eq. 42) hold at the new time level.
 constexpr int kWeightedRows = 6;
 
-/// Water velocity (current plus waves) at a node, in the problem frame [m/s]; evaluated by the
-/// caller in double (its dependence on the node position is left out of the Jacobian).
+/// Water velocity (current plus waves) at a node, in the problem frame [m/s], evaluated by the
+/// caller in double at the node's position, with the current's vertical gradient so that the
+/// Jacobian carries the depth dependence of the current profile (the waves' dependence on the
+/// node position is left out of the Jacobian: a quasi-Newton term).
 struct Water {
   double wx = 0.0, wz = 0.0;
+  double z = 0.0;         ///< elevation the values were taken at [m]
+  double dwx_dz = 0.0;    ///< vertical gradient of the current [1/s]
 };
+
+/// Horizontal water velocity at node state Y, linear in the node's elevation about w.z.
+template <class S>
+S waterX(const Water& w, const S* Y) {
+  return w.wx + w.dwx_dz * (Y[Z] - w.z);
+}
 
 /// Global velocity (Vx, Vz) of a node from its local components.
 template <class S>
@@ -60,8 +70,9 @@ void distributedLoad(const Environment& env, const Material& m, const S* Y, cons
   using std::sin;
   using std::sqrt;
   const S c = cos(Y[PHI]), s = sin(Y[PHI]);
-  const S wt = w.wx * s + w.wz * c;   // water velocity along t
-  const S wn = w.wx * c - w.wz * s;   // and along n
+  const S wx = waterX(w, Y);
+  const S wt = wx * s + w.wz * c;   // water velocity along t
+  const S wn = wx * c - w.wz * s;   // and along n
   const S ur = Y[U] - wt, vr = Y[V] - wn;
   const S stretch = sqrt(1.0 + Y[EPS]);
   const double rho = env.water_density;
@@ -89,7 +100,7 @@ void inertia(const Environment& env, const Material& m, const S* Y, const S* Yd,
   using std::cos;
   using std::sin;
   const S c = cos(Y[PHI]), s = sin(Y[PHI]);
-  const S wt = w.wx * s + w.wz * c;
+  const S wt = waterX(w, Y) * s + w.wz * c;
   const double rhoA = 0.25 * env.water_density * eq2d::kPi * m.diameter * m.diameter;
   out[0] = -m.mass * Yd[U] + m.mass * Y[V] * Yd[PHI];                                          // eq. 1
   out[1] = -(m.mass + m.added_mass) * Yd[V] - (m.mass * Y[U] + (rhoA + m.added_mass) * wt) * Yd[PHI];  // eq. 2
@@ -149,7 +160,7 @@ void junctionForces(const Problem& p, const MeshInterval& iv, const Material& ma
   for (std::size_t k : iv.bodies) {
     const Body& b = p.bodies[k];
     // Drag on the velocity of the water relative to the body, split along and across the line.
-    const S rx = w.wx - Vx, rz = w.wz - Vz;
+    const S rx = waterX(w, Ya) - Vx, rz = w.wz - Vz;
     const S rt = rx * s + rz * c, rn = rx * c - rz * s;
     const double q = 0.5 * p.environment.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter;
     const S dt = q * b.cdt * signedSquare(rt), dn = q * b.cdn * signedSquare(rn);

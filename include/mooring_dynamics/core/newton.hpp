@@ -48,6 +48,17 @@ struct NewtonOptions {
   double R2 = 1.02;
 };
 
+/// Assembled Jacobian of `system` at Y against central finite differences of its residual
+/// (relative step 1e-6): the largest relative difference max|exact - fd| / max(1, |exact|, |fd|)
+/// over all entries, where it occurs, and whether any coupling falls outside the band.
+struct JacobianCheck {
+  double worst = 0.0;
+  int row = -1, column = -1;
+  double exact = 0.0, finite_difference = 0.0;
+  bool outside_band = false;  ///< a nonzero finite difference outside the declared band
+};
+JacobianCheck checkJacobian(NewtonSystem& system, const Eigen::VectorXd& Y);
+
 /// Iterate Y^{k+1} = Y^k + mu dY^k (eq. 38) from the initial guess in Y until sigma^k (eq. 39)
 /// falls below the tolerance. Y holds the last iterate on return, converged or not.
 SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options);
