@@ -94,6 +94,25 @@ void Environment::currentAt(double z, double& ux, double& uy) const {
   }
 }
 
+void Environment::currentGradientAt(double z, double& dux_dz, double& duy_dz) const {
+  dux_dz = duy_dz = 0.0;
+  if (current.size() < 2) return;
+  const double d = std::max(0.0, -z);
+  // Same interval choice as currentAt: d in (depth[i-1], depth[i]] uses interval i.
+  if (d <= current.front().depth || d > current.back().depth) return;
+  for (std::size_t i = 1; i < current.size(); ++i) {
+    if (d <= current[i].depth) {
+      const CurrentPoint& a = current[i - 1];
+      const CurrentPoint& b = current[i];
+      const double dd = b.depth - a.depth;  // > 0 (validated)
+      // du/dz = -du/dd: depth grows downward, z upward.
+      dux_dz = -(b.speed * std::cos(b.direction) - a.speed * std::cos(a.direction)) / dd;
+      duy_dz = -(b.speed * std::sin(b.direction) - a.speed * std::sin(a.direction)) / dd;
+      return;
+    }
+  }
+}
+
 // --- Surface buoy ----------------------------------------------------------------------------
 
 double SurfaceBuoy::submergedVolume(double d) const {

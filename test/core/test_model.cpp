@@ -187,6 +187,57 @@ TEST(Environment, CurrentProfileInterpolatesVelocityComponents) {
   EXPECT_NEAR(uy, 0.0, kTol);
 }
 
+TEST(Environment, CurrentGradientMatchesFiniteDifferences) {
+  Environment env;
+  // Same profile as above: the velocity components change with depth in both x and y.
+  env.current = {{10.0, 1.0, 0.0}, {50.0, 0.5, 0.5 * kPi}, {100.0, 0.2, kPi}};
+  // Interval slopes of (ux, uy) in depth: (-1/40, 0.5/40) and (-0.2/50, -0.5/50); dz = -dd.
+  constexpr double kTol = 1e-12;  // a few flops on O(1) values
+  double gx, gy;
+  env.currentGradientAt(-30.0, gx, gy);
+  EXPECT_NEAR(gx, 1.0 / 40.0, kTol);
+  EXPECT_NEAR(gy, -0.5 / 40.0, kTol);
+  env.currentGradientAt(-75.0, gx, gy);
+  EXPECT_NEAR(gx, 0.2 / 50.0, kTol);
+  EXPECT_NEAR(gy, 0.5 / 50.0, kTol);
+  // Away from the table points the gradient is the derivative of currentAt.
+  for (double z : {-12.0, -31.7, -49.0, -51.0, -88.8, -99.0}) {
+    double uxp, uyp, uxm, uym;
+    env.currentAt(z + kFdStep, uxp, uyp);
+    env.currentAt(z - kFdStep, uxm, uym);
+    env.currentGradientAt(z, gx, gy);
+    EXPECT_NEAR(gx, (uxp - uxm) / (2 * kFdStep), kFdTol) << "z " << z;
+    EXPECT_NEAR(gy, (uyp - uym) / (2 * kFdStep), kFdTol) << "z " << z;
+  }
+  // Held end values above the first point, above the surface and below the last point: no slope.
+  for (double z : {-5.0, -10.0, 0.0, 3.0, -100.5, -400.0}) {
+    env.currentGradientAt(z, gx, gy);
+    EXPECT_EQ(gx, 0.0) << "z " << z;
+    EXPECT_EQ(gy, 0.0) << "z " << z;
+  }
+  // On an inner table point: the slope of the interval above it (where currentAt interpolates).
+  env.currentGradientAt(-50.0, gx, gy);
+  EXPECT_NEAR(gx, 1.0 / 40.0, kTol);
+  EXPECT_NEAR(gy, -0.5 / 40.0, kTol);
+}
+
+TEST(Environment, UniformOrAbsentCurrentHasNoGradient) {
+  Environment env;
+  double gx = 1.0, gy = 1.0;
+  env.currentGradientAt(-20.0, gx, gy);  // no current
+  EXPECT_EQ(gx, 0.0);
+  EXPECT_EQ(gy, 0.0);
+  env.current = {{0.0, 0.5, 0.3}};  // one point
+  gx = gy = 1.0;
+  env.currentGradientAt(-20.0, gx, gy);
+  EXPECT_EQ(gx, 0.0);
+  EXPECT_EQ(gy, 0.0);
+  env.current = {{0.0, 0.5, 0.3}, {200.0, 0.5, 0.3}};  // the uniform shorthand's two points
+  env.currentGradientAt(-20.0, gx, gy);
+  EXPECT_EQ(gx, 0.0);
+  EXPECT_EQ(gy, 0.0);
+}
+
 TEST(Environment, CurrentDirectionIsCounterclockwiseFromEast) {
   Environment env;
   env.current = {{0.0, 2.0, kPi / 6.0}};

@@ -98,6 +98,12 @@ struct Environment {
   double seabedSlope(double x) const;
   /// Current velocity (east, north) [m/s] at elevation z [m] (z <= 0 in water).
   void currentAt(double z, double& ux, double& uy) const;
+  /// Vertical gradient d(ux, uy)/dz [1/s] of currentAt at elevation z [m]: the slope of the
+  /// piecewise-linear profile (for Jacobians). Zero above the first and below the last point,
+  /// above the surface and for a uniform or absent current. A depth d = -z exactly on a table
+  /// point takes the slope of the interval above it (the interval currentAt interpolates in),
+  /// and the first point itself belongs to the constant part above it.
+  void currentGradientAt(double z, double& dux_dz, double& duy_dz) const;
 };
 
 /// A surface buoy at the top of the line (paper 5.1): its draft balances the line.
