@@ -53,15 +53,75 @@ double Material::strainAt(double T) const {
 
 // --- Environment -----------------------------------------------------------------------------
 
-double Environment::seabedElevation(double x) const {
+double SeabedGrid::depthAt(double x, double y) const {
+  // Fractional grid coordinates clamped to the grid; the cell is the one at or west/south of them.
+  const double fx = std::clamp((x - x0) / dx, 0.0, static_cast<double>(nx - 1));
+  const double fy = std::clamp((y - y0) / dy, 0.0, static_cast<double>(ny - 1));
+  const std::size_t ix = std::min(static_cast<std::size_t>(fx), nx - 2);
+  const std::size_t iy = std::min(static_cast<std::size_t>(fy), ny - 2);
+  const double u = fx - static_cast<double>(ix), v = fy - static_cast<double>(iy);
+  return (1.0 - v) * ((1.0 - u) * at(ix, iy) + u * at(ix + 1, iy)) +
+         v * ((1.0 - u) * at(ix, iy + 1) + u * at(ix + 1, iy + 1));
+}
+
+void SeabedGrid::depthGradient(double x, double y, double& dd_dx, double& dd_dy) const {
+  const double gx = (x - x0) / dx, gy = (y - y0) / dy;
+  const double xmax = static_cast<double>(nx - 1), ymax = static_cast<double>(ny - 1);
+  const bool inside_x = gx > 0.0 && gx < xmax, inside_y = gy > 0.0 && gy < ymax;
+  const double fx = std::clamp(gx, 0.0, xmax), fy = std::clamp(gy, 0.0, ymax);
+  const std::size_t ix = std::min(static_cast<std::size_t>(fx), nx - 2);
+  const std::size_t iy = std::min(static_cast<std::size_t>(fy), ny - 2);
+  const double u = fx - static_cast<double>(ix), v = fy - static_cast<double>(iy);
+  dd_dx = inside_x ? ((1.0 - v) * (at(ix + 1, iy) - at(ix, iy)) + v * (at(ix + 1, iy + 1) - at(ix, iy + 1))) / dx : 0.0;
+  dd_dy = inside_y ? ((1.0 - u) * (at(ix, iy + 1) - at(ix, iy)) + u * (at(ix + 1, iy + 1) - at(ix + 1, iy))) / dy : 0.0;
+}
+
+std::string SeabedGrid::validate() const {
+  const std::string k = "environment.seabed.grid" + (source.empty() ? std::string() : " (" + source + ")") + ".";
+  std::string e;
+  if (!(e = check(finite(x0), k + "x0", x0, "must be finite")).empty()) return e;
+  if (!(e = check(finite(y0), k + "y0", y0, "must be finite")).empty()) return e;
+  if (!(e = check(finite(dx) && dx > 0.0, k + "dx", dx, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(dy) && dy > 0.0, k + "dy", dy, "must be > 0")).empty()) return e;
+  if (nx < 2) return k + "nx = " + std::to_string(nx) + ": must be >= 2 (for a depth varying in x only use seabed.profile)";
+  if (ny < 2) return k + "ny = " + std::to_string(ny) + ": must be >= 2 (for a depth varying in x only use seabed.profile)";
+  if (depths.size() != nx * ny)
+    return k + "depths has " + std::to_string(depths.size()) + " values: must have nx * ny = " +
+           std::to_string(nx * ny);
+  for (std::size_t i = 0; i < depths.size(); ++i) {
+    const std::string r = k + "depths[" + std::to_string(i) + "] (ix = " + std::to_string(i % nx) +
+                          ", iy = " + std::to_string(i / nx) + ")";
+    if (!(e = check(finite(depths[i]) && depths[i] > 0.0, r, depths[i], "must be > 0 (depth, positive down)")).empty())
+      return e;
+  }
+  return {};
+}
+
+double Environment::seabedElevation(double x, double y) const {
+  if (!seabed.grid.empty()) return -seabed.grid.depthAt(x, y);
   if (seabed.profile.empty()) return -depth;
   return -interpolateTableClamped(seabed.profile, x);
 }
 
+void Environment::seabedGradient(double x, double y, double& dzdx, double& dzdy) const {
+  dzdx = dzdy = 0.0;
+  if (!seabed.grid.empty()) {
+    seabed.grid.depthGradient(x, y, dzdx, dzdy);
+    dzdx = -dzdx;
+    dzdy = -dzdy;
+    return;
+  }
+  if (seabed.profile.size() < 2) return;
+  if (x <= seabed.profile.front().first || x >= seabed.profile.back().first) return;
+  dzdx = -interpolateTableSlope(seabed.profile, x);
+}
+
+double Environment::seabedElevation(double x) const { return seabedElevation(x, 0.0); }
+
 double Environment::seabedSlope(double x) const {
-  if (seabed.profile.size() < 2) return 0.0;
-  if (x <= seabed.profile.front().first || x >= seabed.profile.back().first) return 0.0;
-  return -interpolateTableSlope(seabed.profile, x);
+  double dzdx, dzdy;
+  seabedGradient(x, 0.0, dzdx, dzdy);
+  return dzdx;
 }
 
 void Environment::currentAt(double z, double& ux, double& uy) const {
@@ -246,6 +306,11 @@ std::string Problem::validate() const {
     if (!finite(p.first) || !finite(p.second)) return r + " = [" + fmt(p.first) + ", " + fmt(p.second) + "]: must be finite";
     if (!(p.second > 0.0)) return r + " depth = " + fmt(p.second) + ": must be > 0";
     if (i > 0 && !(p.first > env.seabed.profile[i - 1].first)) return r + " x = " + fmt(p.first) + ": x must increase";
+  }
+  if (!env.seabed.grid.empty()) {
+    if (!env.seabed.profile.empty())
+      return "environment.seabed: has both a profile and a grid; give at most one of profile and grid_file";
+    if (!(e = env.seabed.grid.validate()).empty()) return e;
   }
   for (std::size_t i = 0; i < env.current.size(); ++i) {
     const auto& c = env.current[i];

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "mooring_dynamics/core/problem_io_dynamics.hpp"
+#include "mooring_dynamics/core/seabed_grid_io.hpp"
 #include "mooring_dynamics/core/yaml_reader.hpp"
 
 namespace mooring_dynamics {
@@ -33,7 +35,22 @@ using problem_io_detail::readWaves;
 // ---------------------------------------------------------------------------------------------
 // Sections
 
-void readEnvironment(const Item& it, Environment& env) {
+/// `environment.seabed.grid_file`: the path relative to `base_dir` (the problem file's directory;
+/// empty = the current directory) unless absolute; errors of the grid file name both files.
+SeabedGrid readGridFile(const Item& it, const std::string& base_dir) {
+  const std::string rel = readString(it);
+  if (rel.empty()) it.failQuoted("must name a grid file");
+  namespace fs = std::filesystem;
+  const fs::path p(rel);
+  const std::string path = p.is_absolute() || base_dir.empty() ? rel : (fs::path(base_dir) / p).string();
+  try {
+    return loadSeabedGrid(path);
+  } catch (const ProblemError& e) {
+    throw ProblemError(it.path + " = " + quoted(rel) + ": " + e.what() + lineSuffix(it.mark));
+  }
+}
+
+void readEnvironment(const Item& it, Environment& env, const std::string& base_dir) {
   const Map m(it, {"water_density", "air_density", "gravity", "depth", "seabed", "current", "wind", "waves"});
   env.water_density = m.number("water_density", env.water_density, Range::Positive);
   env.air_density = m.number("air_density", env.air_density, Range::NonNegative);
@@ -41,7 +58,7 @@ void readEnvironment(const Item& it, Environment& env) {
   env.depth = m.number("depth", env.depth, Range::Positive);
 
   if (m.has("seabed")) {
-    const Map sb(m.at("seabed"), {"stiffness", "damping", "profile", "static_cap"});
+    const Map sb(m.at("seabed"), {"stiffness", "damping", "profile", "grid_file", "static_cap"});
     env.seabed.stiffness = sb.number("stiffness", env.seabed.stiffness, Range::Positive);
     env.seabed.damping = sb.number("damping", env.seabed.damping, Range::NonNegative);
     if (sb.has("static_cap")) env.seabed.static_cap = readBool(sb.at("static_cap"));
@@ -58,6 +75,13 @@ void readEnvironment(const Item& it, Environment& env) {
           items[i].fail("x must increase along the profile (previous x = " +
                         formatNumber(env.seabed.profile[i - 1].first) + ")");
       }
+    }
+    if (sb.has("grid_file")) {
+      const Item gi = sb.at("grid_file");
+      if (sb.has("profile"))
+        throw ProblemError(sb.path() + ": has both profile and grid_file; give at most one (a grid also covers "
+                           "a depth varying in x only)" + lineSuffix(gi.mark));
+      env.seabed.grid = readGridFile(gi, base_dir);
     }
   }
 
@@ -78,6 +102,7 @@ void readEnvironment(const Item& it, Environment& env) {
       p.direction = c.number("direction_deg", 0.0, Range::Any) * kDegToRad;
       double bottom = env.depth;
       for (const auto& q : env.seabed.profile) bottom = std::max(bottom, q.second);
+      for (double d : env.seabed.grid.depths) bottom = std::max(bottom, d);
       p.depth = 0.0;
       env.current.push_back(p);
       p.depth = bottom;
@@ -333,7 +358,7 @@ void readLine(const Item& it, Problem& pb, const std::map<std::string, std::size
   if (pb.segments.empty()) it.failNoValue("needs at least one segment {material, length}");
 }
 
-Problem parse(const YAML::Node& root) {
+Problem parse(const YAML::Node& root, const std::string& base_dir) {
   if (!root.IsDefined() || root.IsNull())
     throw ProblemError("problem file is empty: expected a map with at least materials, line and top");
   const Item rit{root, "", markOf(root, YAML::Mark::null_mark())};
@@ -344,7 +369,7 @@ Problem parse(const YAML::Node& root) {
                       "dynamics"});
   Problem pb;
   if (top.has("name")) pb.name = readString(top.at("name"));
-  if (presentAndNotNull(top, "environment")) readEnvironment(top.at("environment"), pb.environment);
+  if (presentAndNotNull(top, "environment")) readEnvironment(top.at("environment"), pb.environment, base_dir);
 
   // Materials, in file order.
   std::map<std::string, std::size_t> mat_index;
@@ -418,7 +443,9 @@ Problem parse(const YAML::Node& root) {
 
 }  // namespace
 
-Problem loadProblemFromString(const std::string& yaml_text) {
+Problem loadProblemFromString(const std::string& yaml_text) { return loadProblemFromString(yaml_text, ""); }
+
+Problem loadProblemFromString(const std::string& yaml_text, const std::string& base_dir) {
   YAML::Node root;
   try {
     const std::vector<YAML::Node> docs = YAML::LoadAll(yaml_text);
@@ -433,7 +460,7 @@ Problem loadProblemFromString(const std::string& yaml_text) {
     throw ProblemError(msg + ": " + e.msg);
   }
   try {
-    return parse(root);
+    return parse(root, base_dir);
   } catch (const YAML::Exception& e) {  // should not happen: all access is checked above
     throw ProblemError(std::string("YAML error: ") + e.what());
   }
@@ -449,7 +476,9 @@ Problem loadProblemFromFile(const std::string& path) {
   ss << in.rdbuf();
   if (in.bad()) throw ProblemError(path + ": read error");
   try {
-    Problem pb = loadProblemFromString(ss.str());
+    // Files named in the problem (seabed grid) are relative to its directory.
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    Problem pb = loadProblemFromString(ss.str(), dir);
     if (pb.name.empty()) {
       // Default name: the file name without directory and extension.
       std::string stem = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);

@@ -148,6 +148,113 @@ TEST(Environment, SeabedProfile) {
   }
 }
 
+/// A 4 x 3 grid from (-100, 50) with spacings 50 m (x) and 20 m (y), depths from `f(x, y)`.
+template <class F>
+SeabedGrid gridOf(F f) {
+  SeabedGrid g;
+  g.x0 = -100.0;
+  g.y0 = 50.0;
+  g.dx = 50.0;
+  g.dy = 20.0;
+  g.nx = 4;
+  g.ny = 3;
+  for (std::size_t iy = 0; iy < g.ny; ++iy)
+    for (std::size_t ix = 0; ix < g.nx; ++ix) g.depths.push_back(f(g.x0 + ix * g.dx, g.y0 + iy * g.dy));
+  return g;
+}
+
+TEST(Environment, SeabedGridIsExactOnAPlaneAndABilinearSurface) {
+  // Bilinear interpolation reproduces a + b x + c y + d x y exactly, between and on grid points.
+  auto plane = [](double x, double y) { return 80.0 + 0.1 * x - 0.25 * y; };
+  auto saddle = [](double x, double y) { return 80.0 + 0.1 * x - 0.25 * y + 1e-3 * x * y; };
+  constexpr double kTol = 1e-12 * 100;  // a few flops on depths of O(100) m
+  for (int which = 0; which < 2; ++which) {
+    Environment env;
+    env.depth = 999.0;  // not used with a grid
+    env.seabed.grid = which == 0 ? gridOf(plane) : gridOf(saddle);
+    ASSERT_EQ(env.seabed.grid.validate(), "");
+    for (double x : {-100.0, -77.7, -50.0, 0.0, 12.5, 49.9, 50.0})
+      for (double y : {50.0, 51.0, 70.0, 83.3, 90.0}) {
+        const double d = which == 0 ? plane(x, y) : saddle(x, y);
+        EXPECT_NEAR(env.seabedElevation(x, y), -d, kTol) << which << " x " << x << " y " << y;
+        double dzdx, dzdy;
+        env.seabedGradient(x, y, dzdx, dzdy);
+        // Exact derivatives of the surface, except on the edges (clamped: 0).
+        const double ex = which == 0 ? 0.1 : 0.1 + 1e-3 * y, ey = which == 0 ? -0.25 : -0.25 + 1e-3 * x;
+        EXPECT_NEAR(dzdx, x > -100.0 && x < 50.0 ? -ex : 0.0, 1e-12) << which << " x " << x << " y " << y;
+        EXPECT_NEAR(dzdy, y > 50.0 && y < 90.0 ? -ey : 0.0, 1e-12) << which << " x " << x << " y " << y;
+      }
+  }
+}
+
+TEST(Environment, SeabedGridGradientMatchesFiniteDifferences) {
+  // A surface that bilinear interpolation does not reproduce: the gradient is that of the
+  // interpolant (piecewise bilinear), checked away from the grid lines.
+  Environment env;
+  env.seabed.grid = gridOf([](double x, double y) { return 60.0 + 10.0 * std::sin(0.03 * x) * std::cos(0.05 * y); });
+  constexpr double kStep = 1e-4;   // [m]: O(100) m depths, rounding 1e-14 * 100 / 1e-4 ~ 1e-8
+  constexpr double kTol = 1e-7;    // the interpolant is linear along each axis within a cell: no truncation
+  for (double x : {-90.0, -33.0, 10.0, 77.0})
+    for (double y : {55.0, 68.0, 81.0}) {
+      double dzdx, dzdy;
+      env.seabedGradient(x, y, dzdx, dzdy);
+      const double fx = (env.seabedElevation(x + kStep, y) - env.seabedElevation(x - kStep, y)) / (2 * kStep);
+      const double fy = (env.seabedElevation(x, y + kStep) - env.seabedElevation(x, y - kStep)) / (2 * kStep);
+      EXPECT_NEAR(dzdx, fx, kTol) << "x " << x << " y " << y;
+      EXPECT_NEAR(dzdy, fy, kTol) << "x " << x << " y " << y;
+      EXPECT_GT(std::abs(dzdx) + std::abs(dzdy), 1e-3);  // a real slope, not a trivially flat test
+    }
+}
+
+TEST(Environment, SeabedGridIsClampedToItsEdges) {
+  Environment env;
+  env.seabed.grid = gridOf([](double x, double y) { return 80.0 + 0.1 * x - 0.25 * y; });
+  const SeabedGrid& g = env.seabed.grid;
+  // Corners: the corner depth however far out; edges: the edge's interpolated depth.
+  EXPECT_EQ(env.seabedElevation(-1e4, -1e4), -g.at(0, 0));
+  EXPECT_EQ(env.seabedElevation(1e4, -1e4), -g.at(3, 0));
+  EXPECT_EQ(env.seabedElevation(-1e4, 1e4), -g.at(0, 2));
+  EXPECT_EQ(env.seabedElevation(1e4, 1e4), -g.at(3, 2));
+  EXPECT_EQ(env.seabedElevation(-500.0, 63.0), env.seabedElevation(-100.0, 63.0));  // west
+  EXPECT_EQ(env.seabedElevation(12.0, 1000.0), env.seabedElevation(12.0, 90.0));    // north
+  double dzdx, dzdy;
+  env.seabedGradient(-500.0, 63.0, dzdx, dzdy);  // west of the grid: flat in x, sloped in y
+  EXPECT_EQ(dzdx, 0.0);
+  EXPECT_NEAR(dzdy, 0.25, 1e-12);
+  env.seabedGradient(1e4, 1e4, dzdx, dzdy);  // beyond a corner: flat
+  EXPECT_EQ(dzdx, 0.0);
+  EXPECT_EQ(dzdy, 0.0);
+}
+
+TEST(Environment, WithoutAGridTheXProfileAndFlatDepthAreUsed) {
+  Environment env;
+  env.depth = 77.0;
+  double dzdx, dzdy;
+  for (double y : {0.0, -300.0, 1e5}) {
+    EXPECT_EQ(env.seabedElevation(12.0, y), -77.0);
+    env.seabedGradient(12.0, y, dzdx, dzdy);
+    EXPECT_EQ(dzdx, 0.0);
+    EXPECT_EQ(dzdy, 0.0);
+  }
+  env.seabed.profile = {{0.0, 100.0}, {100.0, 50.0}, {200.0, 60.0}};
+  for (double x : {-30.0, 0.0, 50.0, 100.0, 150.0, 500.0}) {
+    EXPECT_EQ(env.seabedElevation(x, 0.0), env.seabedElevation(x)) << x;
+    EXPECT_EQ(env.seabedElevation(x, 250.0), env.seabedElevation(x)) << x;  // no y dependence
+    env.seabedGradient(x, 250.0, dzdx, dzdy);
+    EXPECT_EQ(dzdx, env.seabedSlope(x)) << x;
+    EXPECT_EQ(dzdy, 0.0) << x;
+  }
+  // With a grid, the 2-D functions are its section y = 0.
+  env.seabed.profile.clear();
+  env.seabed.grid = gridOf([](double x, double y) { return 80.0 + 0.1 * x - 0.25 * y + 1e-3 * x * y; });
+  env.seabed.grid.y0 = -20.0;  // so that y = 0 lies inside the grid
+  for (double x : {-30.0, 0.0, 75.0}) {
+    EXPECT_EQ(env.seabedElevation(x), env.seabedElevation(x, 0.0)) << x;
+    env.seabedGradient(x, 0.0, dzdx, dzdy);
+    EXPECT_EQ(env.seabedSlope(x), dzdx) << x;
+  }
+}
+
 TEST(Environment, NoCurrent) {
   Environment env;
   double ux = 1.0, uy = 1.0;
@@ -398,6 +505,39 @@ TEST(Validation, EnvironmentAndAnchorFields) {
     p.environment.water_density = 0.0;
     EXPECT_TRUE(contains(p.validate(), "environment.water_density"));
   }
+}
+
+TEST(Validation, SeabedGridFields) {
+  auto grid = [] {
+    SeabedGrid g;
+    g.nx = 3;
+    g.ny = 2;
+    g.dx = g.dy = 10.0;
+    g.depths = {100, 100, 100, 100, 100, 100};
+    return g;
+  };
+  Problem p = validProblem();
+  p.environment.seabed.grid = grid();
+  EXPECT_EQ(p.validate(), "");
+  p.environment.seabed.grid.dx = 0.0;
+  EXPECT_TRUE(contains(p.validate(), "environment.seabed.grid.dx = 0: must be > 0"));
+  p.environment.seabed.grid = grid();
+  p.environment.seabed.grid.dy = std::nan("");
+  EXPECT_TRUE(contains(p.validate(), "environment.seabed.grid.dy = nan: must be > 0"));
+  p.environment.seabed.grid = grid();
+  p.environment.seabed.grid.ny = 1;
+  p.environment.seabed.grid.depths.resize(3);
+  EXPECT_TRUE(contains(p.validate(), "environment.seabed.grid.ny = 1: must be >= 2"));
+  p.environment.seabed.grid = grid();
+  p.environment.seabed.grid.depths.pop_back();
+  EXPECT_TRUE(contains(p.validate(), "environment.seabed.grid.depths has 5 values: must have nx * ny = 6"));
+  p.environment.seabed.grid = grid();
+  p.environment.seabed.grid.depths[4] = -3.0;
+  p.environment.seabed.grid.source = "bay.grid";
+  EXPECT_TRUE(contains(p.validate(), "environment.seabed.grid (bay.grid).depths[4] (ix = 1, iy = 1) = -3: must be > 0"));
+  p.environment.seabed.grid = grid();
+  p.environment.seabed.profile = {{0.0, 100.0}, {100.0, 50.0}};
+  EXPECT_TRUE(contains(p.validate(), "environment.seabed: has both a profile and a grid"));
 }
 
 TEST(Validation, SolverOptions) {

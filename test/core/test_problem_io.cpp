@@ -404,6 +404,66 @@ TEST(ProblemIo, FileErrors) {
   std::remove(good.c_str());
 }
 
+TEST(ProblemIo, SeabedGridFileIsRelativeToTheProblemFile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "md_grid_test";
+  fs::create_directories(dir / "sub");
+  {
+    std::ofstream g(dir / "sub" / "bay.grid");
+    g << "# x0 y0 dx dy nx ny\n-100 -100 100 100 3 3\n130 120 110\n125 115 105\n120 110 100\n";
+  }
+  const std::string yaml = mutate("seabed: {stiffness: 2.0e5, damping: 10, profile: [[-100, 100], [0, 100], [200, 80]]}",
+                                  "seabed: {stiffness: 2.0e5, damping: 10, grid_file: sub/bay.grid}");
+  {
+    std::ofstream f(dir / "problem.yaml");
+    f << yaml;
+  }
+  const Problem p = loadProblemFromFile((dir / "problem.yaml").string());
+  const SeabedGrid& g = p.environment.seabed.grid;
+  ASSERT_EQ(g.nx, 3u);
+  EXPECT_EQ(g.depths[8], 100.0);
+  EXPECT_EQ(g.source, (dir / "sub" / "bay.grid").string());
+  EXPECT_TRUE(p.environment.seabed.profile.empty());
+  // The anchor's default z is the grid's depth under it (x = -1.5, y = 0).
+  constexpr double kTol = 1e-12;  // bilinear weights on O(100) depths
+  EXPECT_NEAR(p.anchor_z, -(115.0 + 1.5 * 0.1), kTol);
+  // The same text from a string: relative to base_dir, or to the working directory without one.
+  EXPECT_EQ(loadProblemFromString(yaml, dir.string()).environment.seabed.grid.depths, g.depths);
+  EXPECT_ERROR_HAS(yaml, "environment.seabed.grid_file = \"sub/bay.grid\"", "sub/bay.grid: cannot read file",
+                   "(line 8)");
+  fs::remove_all(dir);
+}
+
+TEST(ProblemIo, SeabedGridErrors) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "md_grid_errors";
+  fs::create_directories(dir);
+  {
+    std::ofstream g(dir / "short.grid");
+    g << "0 0 10 10 2 2\n100 100\n";
+  }
+  auto withSeabed = [](const std::string& seabed) { return minimalWith("environment:\n  seabed: " + seabed + "\n"); };
+  auto errorIn = [&](const std::string& text) {
+    try {
+      loadProblemFromString(text, dir.string());
+    } catch (const ProblemError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string shortMsg = errorIn(withSeabed("{grid_file: short.grid}"));
+  for (const char* part : {"environment.seabed.grid_file = \"short.grid\"", "short.grid:2:",
+                           "ends after 1 rows of depths: expected ny = 2", "(line 9)"})
+    EXPECT_NE(shortMsg.find(part), std::string::npos) << shortMsg << " lacks " << part;
+  const std::string missing = errorIn(withSeabed("{grid_file: nothere.grid}"));
+  EXPECT_NE(missing.find((dir / "nothere.grid").string() + ": cannot read file"), std::string::npos) << missing;
+  const std::string both = errorIn(withSeabed("{profile: [[0, 100], [10, 90]], grid_file: short.grid}"));
+  EXPECT_NE(both.find("environment.seabed: has both profile and grid_file"), std::string::npos) << both;
+  EXPECT_ERROR_HAS(withSeabed("{grid_file: \"\"}"), "environment.seabed.grid_file", "must name a grid file");
+  EXPECT_ERROR_HAS(withSeabed("{grid_file: [a]}"), "environment.seabed.grid_file");
+  fs::remove_all(dir);
+}
+
 TEST(ProblemIo, ShippedConfigsLoad) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(MD_SOURCE_DIR) / "config";

@@ -70,6 +70,32 @@ struct CurrentPoint {
   double direction = 0.0;      ///< direction the water flows toward, counterclockwise from +x (east) [rad]
 };
 
+/// Bathymetry on a regular grid in x (east) and y (north), bilinear between the grid points and
+/// held at the edge values outside (problem file `environment.seabed.grid_file`).
+struct SeabedGrid {
+  double x0 = 0.0, y0 = 0.0;   ///< position of the first grid point, the south-west corner [m]
+  double dx = 1.0, dy = 1.0;   ///< grid spacing in x and y [m], > 0
+  std::size_t nx = 0, ny = 0;  ///< number of grid points in x and y, >= 2 each; 0 = no grid
+  /// Depths below the mean surface [m], > 0 (positive down), stored row by row in y with x
+  /// varying fastest: depths[iy * nx + ix] is the depth at (x0 + ix dx, y0 + iy dy). The first
+  /// row is the southern edge y = y0 (the file order of the grid file format).
+  std::vector<double> depths;
+  std::string source;          ///< file the grid was read from, for messages; "" when built in code
+
+  bool empty() const { return depths.empty(); }
+  /// Depth [m] at grid point (ix, iy), unchecked.
+  double at(std::size_t ix, std::size_t iy) const { return depths[iy * nx + ix]; }
+  /// Bilinear depth [m] at (x, y) [m]; outside the grid the coordinates are clamped to the edges.
+  /// Needs a valid grid (validate() empty).
+  double depthAt(double x, double y) const;
+  /// Gradient of depthAt [-]: d(depth)/dx and d(depth)/dy. In a direction where the point is
+  /// clamped (outside the grid, or on its edge) that component is 0; on an inner grid line the
+  /// cell on the east (north) side is used.
+  void depthGradient(double x, double y, double& dd_dx, double& dd_dy) const;
+  /// Empty when valid, else "environment.seabed.grid.<field> = value: constraint".
+  std::string validate() const;
+};
+
 /// Seabed: elastic foundation (paper section 5.3).
 struct Seabed {
   double stiffness = 1.0e5;    ///< k, force per unit line length per metre of penetration [N/m^2]
@@ -80,20 +106,28 @@ struct Seabed {
   bool static_cap = false;
   /// Optional bottom profile (x [m], depth [m]) with x increasing; empty means flat at Environment::depth.
   std::vector<std::pair<double, double>> profile;
+  /// Optional bathymetry grid varying in x and y; when given it replaces the flat depth (the
+  /// profile and the grid are exclusive).
+  SeabedGrid grid;
 };
 
 struct Environment {
   double water_density = 1025.0;  ///< rho_w [kg/m^3]
   double air_density = 1.225;     ///< [kg/m^3]
   double gravity = 9.81;          ///< g [m/s^2]
-  double depth = 100.0;           ///< water depth for a flat seabed [m]
+  double depth = 100.0;           ///< water depth for a flat seabed [m]; always the depth of the wave dispersion relation
   Seabed seabed;
   std::vector<CurrentPoint> current;  ///< profile, depth increasing; empty means no current
   double wind_speed = 0.0;            ///< at the buoy [m/s]
   double wind_direction = 0.0;        ///< direction the wind blows toward, counterclockwise from +x [rad]
   WaveSpec waves;                     ///< surface waves (dynamics); none by default
 
-  /// Seabed elevation z_bot(x) [m] (negative below the surface) and its slope dz_bot/dx [-].
+  /// Seabed elevation z_bot(x, y) [m] (negative below the surface): the grid if there is one,
+  /// else the x profile, else flat at -depth.
+  double seabedElevation(double x, double y) const;
+  /// Its gradient dz_bot/dx, dz_bot/dy [-] (0 where the grid or profile is held at an edge value).
+  void seabedGradient(double x, double y, double& dzdx, double& dzdy) const;
+  /// The 2-D solver's section y = 0: seabedElevation(x, 0) and its slope dz_bot/dx [-].
   double seabedElevation(double x) const;
   double seabedSlope(double x) const;
   /// Current velocity (east, north) [m/s] at elevation z [m] (z <= 0 in water).

@@ -17,10 +17,14 @@ class ProblemError : public std::runtime_error {
   explicit ProblemError(const std::string& what) : std::runtime_error(what) {}
 };
 
-/// Parse a problem from YAML text. Throws ProblemError.
+/// Parse a problem from YAML text. Throws ProblemError. Files the text names (a seabed
+/// `grid_file`) are read relative to the current directory unless absolute.
 Problem loadProblemFromString(const std::string& yaml_text);
+/// Same, with relative file names resolved against `base_dir` ("" = the current directory).
+Problem loadProblemFromString(const std::string& yaml_text, const std::string& base_dir);
 
-/// Parse a problem from a file. Throws ProblemError (also when the file cannot be read).
+/// Parse a problem from a file. Throws ProblemError (also when the file cannot be read). Files it
+/// names (a seabed `grid_file`) are relative to its directory.
 Problem loadProblemFromFile(const std::string& path);
 
 }  // namespace core
