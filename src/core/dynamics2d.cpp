@@ -11,6 +11,7 @@
 #include "mooring_dynamics/core/mesh.hpp"
 #include "mooring_dynamics/core/newton.hpp"
 #include "mooring_dynamics/core/statics2d.hpp"
+#include "mooring_dynamics/core/top_motion.hpp"
 #include "mooring_dynamics/core/waves.hpp"
 
 namespace mooring_dynamics {
@@ -25,107 +26,6 @@ using AD8 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
 constexpr int kAnchorRows = 5;
 constexpr int kTopRows = 3;
 const char* const kVarNames[N] = {"eps", "Sn", "u", "v", "phi", "Omega3", "x", "z"};
-
-/// Top kinematics from the problem file's top motion, about the static top (x0, z0).
-std::function<TopInput(double)> topMotionSource(const TopMotion& m, double x0, double z0, const WaveField* waves) {
-  constexpr double kTwoPi = 6.283185307179586;
-  switch (m.type) {
-    case TopMotion::Type::Hold:
-      return [x0, z0](double) {
-        TopInput in;
-        in.x = x0;
-        in.z = z0;
-        return in;
-      };
-    case TopMotion::Type::Sinusoid:
-      return [m, x0, z0](double t) {
-        const double w = kTwoPi / m.period, a = w * t + m.phase;
-        TopInput in;
-        in.x = x0 + m.amplitude_x * (std::sin(a) - std::sin(m.phase));
-        in.z = z0 + m.amplitude_z * (std::sin(a) - std::sin(m.phase));
-        in.vx = m.amplitude_x * w * std::cos(a);
-        in.vz = m.amplitude_z * w * std::cos(a);
-        return in;
-      };
-    case TopMotion::Type::PositionTable:
-    case TopMotion::Type::VelocityTable:
-    case TopMotion::Type::ForceTable:
-      return [m, x0, z0](double t) {
-        const auto& tab = m.table;
-        // Interval and linear weights; held constant outside the table.
-        std::size_t i = 0;
-        while (i + 1 < tab.size() && tab[i + 1].t <= t) ++i;
-        double a = tab[i].a, b = tab[i].b, da = 0.0, db = 0.0;
-        if (t > tab[i].t && i + 1 < tab.size()) {
-          const double w = (t - tab[i].t) / (tab[i + 1].t - tab[i].t);
-          da = (tab[i + 1].a - tab[i].a) / (tab[i + 1].t - tab[i].t);
-          db = (tab[i + 1].b - tab[i].b) / (tab[i + 1].t - tab[i].t);
-          a += w * (tab[i + 1].a - tab[i].a);
-          b += w * (tab[i + 1].b - tab[i].b);
-        } else if (t < tab.front().t) {
-          a = tab.front().a;
-          b = tab.front().b;
-        }
-        TopInput in;
-        if (m.type == TopMotion::Type::ForceTable) {
-          in.force = true;
-          in.fx = a;
-          in.fz = b;
-        } else if (m.type == TopMotion::Type::PositionTable) {
-          in.x = a;
-          in.z = b;
-          in.vx = da;
-          in.vz = db;
-        } else {
-          // Velocity table: position is the exact integral of the piecewise-linear velocity.
-          double x = x0, z = z0, tp = 0.0;
-          auto vel = [&](double tt, double& vx, double& vz) {
-            std::size_t k = 0;
-            while (k + 1 < tab.size() && tab[k + 1].t <= tt) ++k;
-            vx = tab[k].a;
-            vz = tab[k].b;
-            if (tt > tab[k].t && k + 1 < tab.size()) {
-              const double w = (tt - tab[k].t) / (tab[k + 1].t - tab[k].t);
-              vx += w * (tab[k + 1].a - tab[k].a);
-              vz += w * (tab[k + 1].b - tab[k].b);
-            } else if (tt < tab.front().t) {
-              vx = tab.front().a;
-              vz = tab.front().b;
-            }
-          };
-          std::vector<double> knots{0.0};
-          for (const auto& r : tab)
-            if (r.t > 0.0 && r.t < t) knots.push_back(r.t);
-          knots.push_back(t);
-          for (std::size_t k = 1; k < knots.size(); ++k) {
-            double vx0, vz0, vx1, vz1;
-            vel(knots[k - 1], vx0, vz0);
-            vel(knots[k], vx1, vz1);
-            x += 0.5 * (vx0 + vx1) * (knots[k] - knots[k - 1]);
-            z += 0.5 * (vz0 + vz1) * (knots[k] - knots[k - 1]);
-            tp = knots[k];
-          }
-          (void)tp;
-          in.x = x;
-          in.z = z;
-          vel(t, in.vx, in.vz);
-        }
-        return in;
-      };
-    case TopMotion::Type::WaveFollower:
-      return [x0, z0, waves](double t) {
-        TopInput in;
-        in.x = x0;
-        in.z = z0;
-        if (waves && !waves->empty()) {
-          in.z = z0 + waves->elevation(x0, 0.0, t);
-          in.vz = waves->elevationRate(x0, 0.0, t);
-        }
-        return in;
-      };
-  }
-  return nullptr;
-}
 
 }  // namespace
 
@@ -409,17 +309,25 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   if (problem.environment.waves.type != WaveSpec::Type::None)
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
 
+  // Top motion: the 3-D source projected on the x-z plane, started at the static top (y = 0).
   const NodeState& topNode = im.statics.nodes.back();
   const TopMotion& tm = problem.dynamics.top_motion;
-  if (tm.type == TopMotion::Type::PositionTable) {
-    constexpr double kStartMismatch = 0.01;  // [m] the table must start where statics put the top
-    const double x0 = tm.table.front().a, z0 = tm.table.front().b;
-    if (std::hypot(x0 - topNode.x, z0 - topNode.z) > kStartMismatch)
-      throw std::invalid_argument("dynamics.top_motion.table[0] = (" + std::to_string(x0) + ", " + std::to_string(z0) +
-                                  "): must start at the static top position (" + std::to_string(topNode.x) + ", " +
-                                  std::to_string(topNode.z) + ")");
-  }
-  im.top = topMotionSource(tm, topNode.x, topNode.z, &im.waves);
+  constexpr double kStartMismatch = 0.01;  // [m] a position table must start where statics put the top
+  std::string bad_motion = planarTopMotionError(tm);
+  if (bad_motion.empty()) bad_motion = topMotionStartError(tm, topNode.x, 0.0, topNode.z, kStartMismatch);
+  if (!bad_motion.empty()) throw std::invalid_argument(bad_motion);
+  im.top = [source = makeTopMotion(tm, topNode.x, 0.0, topNode.z, &im.waves)](double t) {
+    const TopState s = source(t);
+    TopInput in;
+    in.force = s.force;
+    in.x = s.x;
+    in.z = s.z;
+    in.vx = s.vx;
+    in.vz = s.vz;
+    in.fx = s.fx;
+    in.fz = s.fz;
+    return in;
+  };
 
   im.t = 0.0;
   im.Y = stateFromStatic(im.statics);

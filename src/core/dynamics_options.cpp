@@ -23,6 +23,7 @@ std::string TopMotion::validate() const {
       return {};
     case Type::Sinusoid:
       if (!std::isfinite(amplitude_x)) return bad(k + "amplitude_x", amplitude_x, "must be finite");
+      if (!std::isfinite(amplitude_y)) return bad(k + "amplitude_y", amplitude_y, "must be finite");
       if (!std::isfinite(amplitude_z)) return bad(k + "amplitude_z", amplitude_z, "must be finite");
       if (!(std::isfinite(period) && period > 0.0)) return bad(k + "period", period, "must be > 0");
       if (!std::isfinite(phase)) return bad(k + "phase_deg", phase, "must be finite");
@@ -30,11 +31,11 @@ std::string TopMotion::validate() const {
     case Type::PositionTable:
     case Type::VelocityTable:
     case Type::ForceTable:
-      if (table.empty()) return k + "table: needs at least one row [t, a, b]";
+      if (table.empty()) return k + "table: needs at least one row [t, x, z] or [t, x, y, z]";
       for (std::size_t i = 0; i < table.size(); ++i) {
         const Row& r = table[i];
         const std::string rk = k + "table[" + std::to_string(i) + "]";
-        if (!std::isfinite(r.t) || !std::isfinite(r.a) || !std::isfinite(r.b))
+        if (!std::isfinite(r.t) || !std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z))
           return rk + ": values must be finite";
         if (i > 0 && !(r.t > table[i - 1].t)) return bad(rk + " t", r.t, "times must increase");
       }

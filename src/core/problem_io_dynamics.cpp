@@ -86,23 +86,24 @@ namespace {
 struct MotionTypeName {
   const char* name;
   TopMotion::Type type;
-  const char* columns;  ///< table row layout, nullptr for types without a table
+  const char* columns;    ///< table row layout in the x-z plane, nullptr for types without a table
+  const char* columns3d;  ///< the same with a y column
 };
 
 const std::vector<MotionTypeName>& motionTypes() {
   static const std::vector<MotionTypeName> list = {
-      {"hold", TopMotion::Type::Hold, nullptr},
-      {"sinusoid", TopMotion::Type::Sinusoid, nullptr},
-      {"position_table", TopMotion::Type::PositionTable, "[t, x, z]"},
-      {"velocity_table", TopMotion::Type::VelocityTable, "[t, vx, vz]"},
-      {"force_table", TopMotion::Type::ForceTable, "[t, fx, fz]"},
-      {"wave_follower", TopMotion::Type::WaveFollower, nullptr},
+      {"hold", TopMotion::Type::Hold, nullptr, nullptr},
+      {"sinusoid", TopMotion::Type::Sinusoid, nullptr, nullptr},
+      {"position_table", TopMotion::Type::PositionTable, "[t, x, z]", "[t, x, y, z]"},
+      {"velocity_table", TopMotion::Type::VelocityTable, "[t, vx, vz]", "[t, vx, vy, vz]"},
+      {"force_table", TopMotion::Type::ForceTable, "[t, fx, fz]", "[t, fx, fy, fz]"},
+      {"wave_follower", TopMotion::Type::WaveFollower, nullptr, nullptr},
   };
   return list;
 }
 
 void readTopMotion(const Item& it, TopMotion& tm) {
-  const Map m(it, {"type", "amplitude_x", "amplitude_z", "period", "phase_deg", "table", "prescribe"});
+  const Map m(it, {"type", "amplitude_x", "amplitude_y", "amplitude_z", "period", "phase_deg", "table", "prescribe"});
   std::vector<std::string> names;
   for (const auto& t : motionTypes()) names.push_back(t.name);
   const Item ti = m.required("type", "one of " + joinList(names));
@@ -117,30 +118,39 @@ void readTopMotion(const Item& it, TopMotion& tm) {
   tm.type = mt->type;
 
   const bool sinusoid = mt->type == TopMotion::Type::Sinusoid;
-  for (const char* k : {"amplitude_x", "amplitude_z", "period", "phase_deg"})
+  for (const char* k : {"amplitude_x", "amplitude_y", "amplitude_z", "period", "phase_deg"})
     if (!sinusoid && m.has(k)) m.at(k).fail("only used with type: sinusoid");
   if (mt->columns == nullptr && m.has("table"))
     m.at("table").fail("only used with type: position_table, velocity_table or force_table");
 
   if (sinusoid) {
     tm.amplitude_x = m.number("amplitude_x", 0.0, Range::Any);
+    tm.amplitude_y = m.number("amplitude_y", 0.0, Range::Any);
     tm.amplitude_z = m.number("amplitude_z", 0.0, Range::Any);
     tm.period = m.number("period", Range::Positive);
     tm.phase = m.number("phase_deg", 0.0, Range::Any) * kDegToRad;
   }
 
   if (mt->columns != nullptr) {
-    const Item tab = m.required("table", std::string("rows ") + mt->columns);
+    // Rows [t, a, c] in the x-z plane (y = 0) or [t, a, b, c] in 3-D; all rows the same width.
+    const std::string both = std::string(mt->columns) + " or " + mt->columns3d;
+    const Item tab = m.required("table", "rows " + both);
     const std::vector<Item> rows = listItems(tab);
-    if (rows.empty()) tab.fail(std::string("needs at least one row ") + mt->columns);
+    if (rows.empty()) tab.fail("needs at least one row " + both);
+    std::size_t width = 0;
     for (const Item& r : rows) {
-      if (!r.node.IsSequence() || r.node.size() != 3) r.wrongType(std::string("a row ") + mt->columns);
-      double v[3];
-      for (std::size_t j = 0; j < 3; ++j)
+      if (!r.node.IsSequence() || (r.node.size() != 3 && r.node.size() != 4)) r.wrongType("a row " + both);
+      if (width == 0) width = r.node.size();
+      if (r.node.size() != width)
+        throw ProblemError(r.path + " = " + render(r.node) + ": has " + std::to_string(r.node.size()) +
+                           " values, the first row " + std::to_string(width) + "; all rows are " +
+                           (width == 3 ? mt->columns : mt->columns3d) + lineSuffix(r.mark));
+      double v[4];
+      for (std::size_t j = 0; j < width; ++j)
         v[j] = readNumber(Item{r.node[j], r.path + "[" + std::to_string(j) + "]", markOf(r.node[j], r.mark)});
       if (!tm.table.empty() && !(v[0] > tm.table.back().t))
         r.fail("t must increase down the table (previous t = " + formatNumber(tm.table.back().t) + ")");
-      tm.table.push_back(TopMotion::Row{v[0], v[1], v[2]});
+      tm.table.push_back(width == 3 ? TopMotion::Row(v[0], v[1], v[2]) : TopMotion::Row(v[0], v[1], v[2], v[3]));
     }
   }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <regex>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -548,6 +549,47 @@ TEST(Dynamics2D, FailureIsReportedNotThrown) {
   EXPECT_FALSE(rep.ok);
   EXPECT_EQ(solver.time(), 0.0);
   EXPECT_FALSE(rep.message.empty());
+}
+
+// --- Top motions the 2-D solver cannot follow ---------------------------------------------------
+
+/// The message of the invalid_argument the 2-D solver throws for `p` ("" if it starts).
+std::string startError(const Problem& p) {
+  try {
+    DynamicSolver2D solver(p);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Dynamics2D, RejectsTopMotionOutOfTheXZPlane) {
+  Problem p = chainMooring(false);
+  TopMotion& tm = p.dynamics.top_motion;
+  tm.type = TopMotion::Type::Sinusoid;
+  tm.amplitude_z = 0.5;
+  tm.period = 8.0;
+  EXPECT_EQ(startError(p), "");
+  tm.amplitude_y = 0.5;
+  std::string e = startError(p);
+  EXPECT_NE(e.find("dynamics.top_motion.amplitude_y = 0.5"), std::string::npos) << e;
+  EXPECT_NE(e.find("needs the 3-D model"), std::string::npos) << e;
+  // A 3-D table with y = 0 throughout is in the plane; a y component is not.
+  tm = TopMotion{};
+  tm.type = TopMotion::Type::VelocityTable;
+  tm.table = {{0.0, 0.0, 0.0, 0.0}, {1.0, 0.1, 0.0, 0.0}};
+  EXPECT_EQ(startError(p), "");
+  tm.table[1].y = 0.1;
+  e = startError(p);
+  EXPECT_NE(e.find("dynamics.top_motion.table[1] y = 0.1"), std::string::npos) << e;
+  // A position table must start at the static top.
+  tm = TopMotion{};
+  tm.type = TopMotion::Type::PositionTable;
+  tm.table = {{0.0, 60.0, 0.0, -1.0}};
+  e = startError(p);
+  EXPECT_NE(e.find("dynamics.top_motion.table[0] = (60, 0, -1): must start at the static top position (60, 0, 0)"),
+            std::string::npos)
+      << e;
 }
 
 // --- Jacobian of a time step --------------------------------------------------------------------

@@ -181,8 +181,9 @@ TEST(ProblemIo, DynamicsTopMotionTables) {
     EXPECT_EQ(tm.type, TopMotion::Type::PositionTable);
     ASSERT_EQ(tm.table.size(), 3u);
     EXPECT_DOUBLE_EQ(tm.table[1].t, 5);
-    EXPECT_DOUBLE_EQ(tm.table[1].a, 101);
-    EXPECT_DOUBLE_EQ(tm.table[1].b, 0.5);
+    EXPECT_DOUBLE_EQ(tm.table[1].x, 101);
+    EXPECT_EQ(tm.table[1].y, 0.0);  // a 3-column row lies in the x-z plane
+    EXPECT_DOUBLE_EQ(tm.table[1].z, 0.5);
     EXPECT_FALSE(tm.prescribe_position);  // velocity BCs by default (eq. 34)
   }
   EXPECT_EQ(loadProblemFromString(minimalWith("dynamics: {top_motion: {type: velocity_table, table: [[0, 0, 1]]}}\n"))
@@ -197,6 +198,46 @@ TEST(ProblemIo, DynamicsTopMotionTables) {
   EXPECT_EQ(loadProblemFromString(minimalWith("dynamics: {top_motion: {type: hold, prescribe: velocity}}\n"))
                 .dynamics.top_motion.type,
             TopMotion::Type::Hold);
+}
+
+TEST(ProblemIo, DynamicsTopMotion3D) {
+  {
+    const Problem p = loadProblemFromString(minimalWith(
+        "dynamics:\n  top_motion:\n    type: position_table\n    table: [[0, 100, 0, 0], [5, 101, -2, 0.5]]\n"));
+    const TopMotion& tm = p.dynamics.top_motion;
+    ASSERT_EQ(tm.table.size(), 2u);
+    EXPECT_EQ(tm.table[1].t, 5.0);
+    EXPECT_EQ(tm.table[1].x, 101.0);
+    EXPECT_EQ(tm.table[1].y, -2.0);
+    EXPECT_EQ(tm.table[1].z, 0.5);
+  }
+  for (const char* type : {"velocity_table", "force_table"}) {
+    const Problem p = loadProblemFromString(minimalWith(std::string("dynamics: {top_motion: {type: ") + type +
+                                                        ", table: [[0, 1, 2, 3], [1, 4, 5, 6]]}}\n"));
+    const TopMotion::Row& r = p.dynamics.top_motion.table[1];
+    EXPECT_EQ(r.x, 4.0) << type;
+    EXPECT_EQ(r.y, 5.0) << type;
+    EXPECT_EQ(r.z, 6.0) << type;
+  }
+  const Problem p = loadProblemFromString(
+      minimalWith("dynamics: {top_motion: {type: sinusoid, amplitude_x: 1, amplitude_y: -2, amplitude_z: 3, period: 8}}\n"));
+  EXPECT_EQ(p.dynamics.top_motion.amplitude_y, -2.0);
+  EXPECT_EQ(loadProblemFromString(minimalWith("dynamics: {top_motion: {type: sinusoid, period: 8}}\n"))
+                .dynamics.top_motion.amplitude_y,
+            0.0);
+  // Errors: mixed row widths name the row, rows of other widths name both layouts.
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {top_motion: {type: velocity_table, table: [[0, 1, 2], [1, 1, 2, 3]]}}\n"),
+                   "dynamics.top_motion.table[1] = [1, 1, 2, 3]", "has 4 values, the first row 3",
+                   "all rows are [t, vx, vz]", "(line 8)");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {top_motion: {type: force_table, table: [[0, 1, 2, 3], [1, 1, 2]]}}\n"),
+                   "dynamics.top_motion.table[1] = [1, 1, 2]", "has 3 values, the first row 4",
+                   "all rows are [t, fx, fy, fz]");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {top_motion: {type: position_table, table: [[0, 1, 2, 3, 4]]}}\n"),
+                   "dynamics.top_motion.table[0]", "a row [t, x, z] or [t, x, y, z]");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {top_motion: {type: position_table, table: [[0, 1, .nan, 3]]}}\n"),
+                   "dynamics.top_motion.table[0][2]", "finite");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {top_motion: {type: hold, amplitude_y: 1}}\n"),
+                   "dynamics.top_motion.amplitude_y = 1", "only used with type: sinusoid");
 }
 
 TEST(ProblemIo, DynamicsTopMotionErrors) {

@@ -10,30 +10,40 @@
 namespace mooring_dynamics {
 namespace core {
 
-/// How the top end moves in a dynamic run. Positions are in the problem frame (x east, z up);
-/// motions are about the static top position unless a table gives absolute positions.
+/// How the top end moves in a dynamic run. Positions are in the problem frame (x east, y north,
+/// z up, z = 0 the mean surface); motions are about the static top position unless a table gives
+/// absolute positions. The 2-D solver follows only motions in the plane y = 0
+/// (planarTopMotionError, top_motion.hpp); makeTopMotion (top_motion.hpp) evaluates them.
 struct TopMotion {
   enum class Type {
     Hold,           ///< top held at its static position
-    Sinusoid,       ///< x = x0 + ax sin(2 pi t / T + phase), z = z0 + az sin(2 pi t / T + phase)
-    PositionTable,  ///< rows (t [s], x [m], z [m]): absolute positions, linear in between
-    VelocityTable,  ///< rows (t [s], vx [m/s], vz [m/s]): linear in between
-    ForceTable,     ///< rows (t [s], fx [N], fz [N]): force applied to the line's top end
+    Sinusoid,       ///< x = x0 + ax (sin(2 pi t / T + phase) - sin(phase)), likewise y and z
+    PositionTable,  ///< rows (t [s], x, y, z [m]): absolute positions, linear in between
+    VelocityTable,  ///< rows (t [s], vx, vy, vz [m/s]): linear in between, integrated from the static top
+    ForceTable,     ///< rows (t [s], fx, fy, fz [N]): force applied to the line's top end
     WaveFollower    ///< the top follows the wave surface vertically (heave), horizontal position held
   };
   Type type = Type::Hold;
   double amplitude_x = 0.0;  ///< Sinusoid [m]
+  double amplitude_y = 0.0;  ///< Sinusoid [m]
   double amplitude_z = 0.0;  ///< Sinusoid [m]
   double period = 1.0;       ///< Sinusoid [s]
   double phase = 0.0;        ///< Sinusoid [rad]
+  /// One table row: time and the three components of a position [m], velocity [m/s] or force
+  /// [N] (per Type). Row{t, x, z} is a row in the x-z plane (y = 0), Row{t, x, y, z} a 3-D row.
   struct Row {
-    double t, a, b;
+    double t = 0.0;  ///< [s]
+    double x = 0.0, y = 0.0, z = 0.0;
+    Row() = default;
+    Row(double t_, double x_, double z_) : t(t_), x(x_), z(z_) {}
+    Row(double t_, double x_, double y_, double z_) : t(t_), x(x_), y(y_), z(z_) {}
   };
   std::vector<Row> table;    ///< tables, t strictly increasing; held constant after the last row
 
   /// Velocity BCs (paper eq. 34, default) or positions prescribed directly in the Newton system.
   bool prescribe_position = false;
 
+  /// Empty when valid, else "dynamics.top_motion.<key> = value: constraint".
   std::string validate() const;
 };
 
