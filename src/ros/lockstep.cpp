@@ -21,9 +21,50 @@ const char* toString(LockstepDriver::Outcome o) {
   return "?";
 }
 
-LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const LockstepOptions& options)
-    : problem_(problem), options_(options) {
+// ------------------------------------------------------------------------------------------------
+// The 2-D adapter.
+
+core::TopInput linearTopInput(double tau, double t0, double x0, double z0, double t1, double x1, double z1) {
+  const double span = t1 - t0;
+  core::TopInput in;
+  const double w = std::clamp((tau - t0) / span, 0.0, 1.0);
+  in.x = x0 + w * (x1 - x0);
+  in.z = z0 + w * (z1 - z0);
+  in.vx = (x1 - x0) / span;
+  in.vz = (z1 - z0) / span;
+  return in;
+}
+
+namespace {
+
+class Solver2D final : public LockstepSolver {
+ public:
+  explicit Solver2D(const core::Problem& p) : s_(p) {}
+  const core::StaticResult& initialStatic() const override { return s_.initialStatic(); }
+  void setTopSegment(double t0, double x0, double z0, double t1, double x1, double z1) override {
+    s_.setTopInput([=](double tau) { return linearTopInput(tau, t0, x0, z0, t1, x1, z1); });
+  }
+  core::StepReport advanceTo(double t) override { return s_.advanceTo(t); }
+  core::StaticResult snapshot() const override { return s_.snapshot(); }
+  double time() const override { return s_.time(); }
+
+ private:
+  core::DynamicSolver2D s_;
+};
+
+}  // namespace
+
+LockstepSolverFactory makeSolver2D() {
+  return [](const core::Problem& p) -> std::unique_ptr<LockstepSolver> { return std::make_unique<Solver2D>(p); };
+}
+
+// ------------------------------------------------------------------------------------------------
+
+LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const LockstepOptions& options,
+                               LockstepSolverFactory factory)
+    : problem_(problem), options_(options), factory_(std::move(factory)) {
   if (!(std::isfinite(dt) && dt > 0.0)) throw std::invalid_argument("dt = " + formatNumber(dt) + ": must be > 0");
+  if (!factory_) factory_ = makeSolver2D();
   problem_.dynamics.dt = dt;
   problem_.dynamics.output_interval = 0.0;
   // The samples drive the top: the file's top motion is not used (a position table would also
@@ -33,7 +74,7 @@ LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const Lo
   problem_.dynamics.top_motion = hold;
   if (problem_.dynamics.duration <= 0.0) problem_.dynamics.duration = dt;  // unused in lockstep
 
-  solver_ = std::make_unique<core::DynamicSolver2D>(problem_);  // throws when the statics fail
+  solver_ = factory_(problem_);  // throws when the statics fail
   solver_is_pristine_ = true;
   const core::NodeState& top = solver_->initialStatic().nodes.back();
   static_top_x_ = top.x;
@@ -44,8 +85,8 @@ LockstepDriver::~LockstepDriver() = default;
 
 double LockstepDriver::solverTime() const { return solver_ ? solver_->time() : 0.0; }
 
-std::unique_ptr<core::DynamicSolver2D> LockstepDriver::build(double x, double z, bool at_problem_top,
-                                                             std::string& error) const {
+std::unique_ptr<LockstepSolver> LockstepDriver::build(double x, double z, bool at_problem_top,
+                                                      std::string& error) const {
   core::Problem p = problem_;
   if (!at_problem_top) {
     p.top.type = core::TopBoundary::Type::Position;
@@ -53,7 +94,7 @@ std::unique_ptr<core::DynamicSolver2D> LockstepDriver::build(double x, double z,
     p.top.z = z;
   }
   try {
-    return std::make_unique<core::DynamicSolver2D>(p);
+    return factory_(p);
   } catch (const std::exception& e) {
     error = e.what();
   }
@@ -66,14 +107,14 @@ LockstepDriver::Result LockstepDriver::start(double t, double x, double z, Outco
   const double dist = std::hypot(x - static_top_x_, z - static_top_z_);
   const bool near = dist <= options_.start_tolerance;
   std::string error;
-  std::unique_ptr<core::DynamicSolver2D> fresh;
   if (near && solver_is_pristine_) {
     // Keep the solver built from the problem's statics.
   } else {
-    fresh = build(x, z, near, error);
+    std::unique_ptr<LockstepSolver> fresh = build(x, z, near, error);
     if (!fresh) {
       started_ = false;
       r.outcome = Outcome::Dropped;
+      r.start_failed = true;
       r.message = (why.empty() ? std::string() : why + "; ") + "cannot start from statics with the top at (x, z) = (" +
                   formatNumber(x) + ", " + formatNumber(z) + ") m: " + error + "; waiting for the next sample";
       return r;
@@ -88,12 +129,13 @@ LockstepDriver::Result LockstepDriver::start(double t, double x, double z, Outco
   prev_t_ = 0.0;
   prev_x_ = top.x;
   prev_z_ = top.z;
+  jumps_ = 0;
   state_ = solver_->snapshot();
   r.publish = true;
   r.message = (why.empty() ? std::string() : why + "; ") +
               (near ? "started from the problem's statics (top at (" + formatNumber(top.x) + ", " +
                           formatNumber(top.z) + ") m, sample " + formatNumber(dist) + " m away)"
-                    : "sample " + formatNumber(dist) + " m from the problem's static top (" +
+                    : "top " + formatNumber(dist) + " m from the problem's static top (" +
                           formatNumber(static_top_x_) + ", " + formatNumber(static_top_z_) +
                           ") m: started from statics re-solved with the top at (" + formatNumber(x) + ", " +
                           formatNumber(z) + ") m");
@@ -119,20 +161,30 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double z) {
                 (gap == 0.0 ? std::string("same stamp") : "back by " + formatNumber(-gap) + " s") + ")";
     return r;
   }
+  if (options_.max_gap > 0.0 && gap > options_.max_gap)
+    return start(t, x, z, Outcome::Reinitialised,
+                 "gap of " + formatNumber(gap) + " s since the last sample (more than " +
+                     formatNumber(options_.max_gap) + " s: the motion in between is unknown)");
 
   const double tp = prev_t_, xp = prev_x_, zp = prev_z_;
   const double tn = t - t0_;
-  const double span = tn - tp;
-  const double vx = (x - xp) / span, vz = (z - zp) / span;
-  solver_->setTopInput([=](double tau) {
-    core::TopInput in;
-    const double w = std::clamp((tau - tp) / span, 0.0, 1.0);
-    in.x = xp + w * (x - xp);
-    in.z = zp + w * (z - zp);
-    in.vx = vx;
-    in.vz = vz;
-    return in;
-  });
+  if (options_.max_speed > 0.0) {
+    const double speed = std::hypot(x - xp, z - zp) / (tn - tp);
+    if (speed > options_.max_speed) {
+      const std::string what = "top jumped from (" + formatNumber(xp) + ", " + formatNumber(zp) + ") to (" +
+                               formatNumber(x) + ", " + formatNumber(z) + ") m in " + formatNumber(tn - tp) +
+                               " s: " + formatNumber(speed) + " m/s, more than max_speed = " +
+                               formatNumber(options_.max_speed) + " m/s";
+      if (++jumps_ >= options_.jumps_to_reinit)
+        return start(t, x, z, Outcome::Reinitialised,
+                     what + " (" + std::to_string(jumps_) + " samples in a row: the source moved)");
+      r.message = what;
+      return r;
+    }
+  }
+  jumps_ = 0;
+
+  solver_->setTopSegment(tp, xp, zp, tn, x, z);
   solver_is_pristine_ = false;
   r.report = solver_->advanceTo(tn);
   if (!r.report.ok) {
@@ -141,6 +193,7 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double z) {
     r.report = rep;
     return r;
   }
+  r.advanced = tn - tp;
   prev_t_ = tn;
   prev_x_ = x;
   prev_z_ = z;
@@ -148,6 +201,42 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double z) {
   state_ = solver_->snapshot();
   r.outcome = Outcome::Advanced;
   r.publish = true;
+  return r;
+}
+
+LockstepDriver::Result LockstepDriver::reset() {
+  if (!started_) {
+    Result r;
+    r.message = "not started yet: nothing to reset (the run starts from statics at the first motion sample)";
+    return r;
+  }
+  return reinitialiseAt(prev_x_, prev_z_, "reset requested");
+}
+
+LockstepDriver::Result LockstepDriver::reinitialiseAt(double x, double z, const std::string& why) {
+  if (!started_) {
+    Result r;
+    r.message = "not started yet: the run starts from statics at the first motion sample";
+    return r;
+  }
+  if (!(std::isfinite(x) && std::isfinite(z))) {
+    Result r;
+    r.message = "non-finite top position (" + formatNumber(x) + ", " + formatNumber(z) + ")";
+    return r;
+  }
+  const double t = last_time_;
+  const double keep_x = prev_x_, keep_z = prev_z_, keep_t0 = t0_, keep_prev_t = prev_t_;
+  Result r = start(t, x, z, Outcome::Reinitialised, why);
+  if (r.start_failed) {
+    // The old solver is still there: keep running it.
+    started_ = true;
+    prev_x_ = keep_x;
+    prev_z_ = keep_z;
+    t0_ = keep_t0;
+    prev_t_ = keep_prev_t;
+    r.message = why + ": cannot solve statics with the top at (" + formatNumber(x) + ", " + formatNumber(z) +
+                ") m; the run goes on unchanged";
+  }
   return r;
 }
 

@@ -41,6 +41,59 @@ geometry_msgs::Point point(double x, double y, double z) {
 
 }  // namespace
 
+std::vector<BodyMark> bodyMarks(const core::Problem& problem) {
+  std::vector<BodyMark> out;
+  std::vector<int> count(problem.bodies.size(), 0), seen(problem.bodies.size(), 0);
+  for (const auto& seg : problem.segments)
+    for (const auto& bp : seg.bodies)
+      if (bp.body < count.size()) ++count[bp.body];
+  double s0 = 0.0;
+  for (const auto& seg : problem.segments) {
+    for (const auto& bp : seg.bodies) {
+      if (bp.body >= problem.bodies.size()) continue;
+      const core::Body& b = problem.bodies[bp.body];
+      BodyMark m;
+      m.name = b.name.empty() ? "body" + std::to_string(bp.body) : b.name;
+      if (count[bp.body] > 1) m.name += "_" + std::to_string(seen[bp.body]++);
+      m.s = s0 + bp.at;
+      m.diameter = b.diameter;
+      m.buoyant = b.wet_weight < 0.0;
+      out.push_back(m);
+    }
+    s0 += seg.length;
+  }
+  return out;
+}
+
+geometry_msgs::Point pointAtArclength(const CableState& state, double s) {
+  const std::size_t n = std::min(state.s.size(), state.positions.size());
+  if (n == 0) return geometry_msgs::Point();
+  if (s <= state.s.front()) return state.positions.front();
+  for (std::size_t i = 1; i < n; ++i) {
+    if (s <= state.s[i]) {
+      const double h = state.s[i] - state.s[i - 1];
+      const double w = h > 0.0 ? (s - state.s[i - 1]) / h : 1.0;
+      const auto& a = state.positions[i - 1];
+      const auto& b = state.positions[i];
+      return point(a.x + w * (b.x - a.x), a.y + w * (b.y - a.y), a.z + w * (b.z - a.z));
+    }
+  }
+  return state.positions[n - 1];
+}
+
+MarkerOptions markerOptionsFor(const core::Problem& problem, double scale) {
+  MarkerOptions o;
+  o.scale = scale;
+  o.bodies = bodyMarks(problem);
+  if (problem.top.type == core::TopBoundary::Type::Buoy) {
+    o.top_buoy = true;
+    o.buoy_cylinder = problem.top.buoy.shape == core::SurfaceBuoy::Shape::Cylinder;
+    o.buoy_diameter = problem.top.buoy.diameter;
+    o.buoy_height = problem.top.buoy.totalHeight();
+  }
+  return o;
+}
+
 std_msgs::ColorRGBA tensionColor(double t, double tmin, double tmax) {
   const double span = tmax - tmin;
   double u = 0.5;
@@ -87,6 +140,11 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
   if (!state.tension.empty()) {
     tmin = *std::min_element(state.tension.begin(), state.tension.end());
     tmax = *std::max_element(state.tension.begin(), state.tension.end());
+  }
+  if (std::isfinite(options.tension_min) && std::isfinite(options.tension_max) &&
+      options.tension_max > options.tension_min) {
+    tmin = options.tension_min;
+    tmax = options.tension_max;
   }
   {
     auto m = baseMarker(state, "cable", visualization_msgs::Marker::LINE_STRIP);
@@ -161,6 +219,64 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
       m.points.insert(m.points.end(), {a0, b0, b1, a0, b1, a1});
     }
     out.markers.push_back(m);
+  }
+
+  // Inline bodies and the surface buoy.
+  for (std::size_t k = 0; k < options.bodies.size(); ++k) {
+    const BodyMark& b = options.bodies[k];
+    auto m = baseMarker(state, "bodies", visualization_msgs::Marker::SPHERE);
+    m.id = static_cast<int>(k);
+    m.pose.position = pointAtArclength(state, b.s);
+    m.scale.x = m.scale.y = m.scale.z = std::max(b.diameter, sphere);
+    m.color = b.buoyant ? rgba(1.0, 0.85, 0.0, 1.0) : rgba(0.3, 0.3, 0.3, 1.0);
+    out.markers.push_back(m);
+  }
+  if (options.top_buoy) {
+    auto m = baseMarker(state, "buoy", options.buoy_cylinder ? visualization_msgs::Marker::CYLINDER
+                                                             : visualization_msgs::Marker::SPHERE);
+    m.pose.position = state.positions.back();
+    // The line hangs from the buoy's bottom: centre half a height above the top node.
+    m.pose.position.z += 0.5 * options.buoy_height;
+    m.scale.x = m.scale.y = std::max(options.buoy_diameter, sphere);
+    m.scale.z = std::max(options.buoy_height, sphere);
+    m.color = rgba(1.0, 0.45, 0.0, 0.9);
+    out.markers.push_back(m);
+  }
+
+  // Colour scale: a bar of the tension colours beside the drawing, labelled at both ends.
+  {
+    const double bar_x = xmax + 0.08 * extent;
+    const double bar_z0 = zmin + 0.25 * (zmax - zmin), bar_h = 0.5 * (zmax - zmin) + 1e-9;
+    const int k = 20;
+    auto m = baseMarker(state, "scale", visualization_msgs::Marker::CUBE_LIST);
+    m.scale.x = m.scale.y = 0.03 * extent * scale;
+    m.scale.z = bar_h / k;
+    m.color = rgba(1.0, 1.0, 1.0, 1.0);
+    for (int i = 0; i < k; ++i) {
+      const double u = (i + 0.5) / k;
+      m.points.push_back(point(bar_x, 0.0, bar_z0 + u * bar_h));
+      m.colors.push_back(tensionColor(tmin + u * (tmax - tmin), tmin, tmax));
+    }
+    out.markers.push_back(m);
+    const double values[2] = {tmin, tmax};
+    for (int j = 0; j < 2; ++j) {
+      auto t = baseMarker(state, "scale", visualization_msgs::Marker::TEXT_VIEW_FACING);
+      t.id = 1 + j;
+      t.pose.position = point(bar_x + 0.03 * extent * scale + 1.5 * text, 0.0, bar_z0 + j * bar_h);
+      t.scale.z = 0.7 * text;
+      t.color = rgba(1.0, 1.0, 1.0, 1.0);
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "%.2f kN", values[j] / 1000.0);
+      t.text = buf;
+      out.markers.push_back(t);
+    }
+    auto title = baseMarker(state, "scale", visualization_msgs::Marker::TEXT_VIEW_FACING);
+    title.id = 3;
+    title.pose.position = point(bar_x, 0.0, bar_z0 + bar_h + 1.2 * text);
+    title.scale.z = 0.7 * text;
+    title.color = rgba(1.0, 1.0, 1.0, 1.0);
+    title.text = "tension";
+    out.markers.push_back(title);
   }
 
   if (options.sea_surface) {

@@ -127,6 +127,7 @@ StaticNode::StaticNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : 
   if (!(std::isfinite(marker_options_.scale) && marker_options_.scale > 0.0))
     throw std::runtime_error("parameter " + pnh_.resolveName("marker_scale") + " = " +
                              formatNumber(marker_options_.scale) + ": must be > 0");
+  marker_options_ = markerOptionsFor(problem_, marker_options_.scale);
 
   state_pub_ = pnh_.advertise<CableState>("cable_state", 1, /*latch=*/true);
   marker_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
@@ -174,6 +175,7 @@ bool StaticNode::onSolveStatic(SolveStatic::Request& req, SolveStatic::Response&
   }
   toResponse(o.result, res);
   res.message = top.summary + ": " + o.message;
+  if (req.reinitialise) res.message += " (reinitialise ignored: static mode has no dynamic run)";
   ROS_INFO("mooring_dynamics: ~solve_static, %.0f ms: %s", ms, res.message.c_str());
   publish(o.result);
   last_ = std::move(o.result);

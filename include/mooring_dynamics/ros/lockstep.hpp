@@ -1,6 +1,9 @@
-// Lockstep driver: feeds timestamped top positions to core::DynamicSolver2D and decides what to
+// Lockstep driver: feeds timestamped top positions to a dynamic cable solver and decides what to
 // do with each sample (start, advance, drop, re-initialise). No ROS calls here, so the policy is
 // testable without a master; LockstepNode (lockstep_node.hpp) wires it to topics and logs.
+//
+// The solver sits behind LockstepSolver (below): today the 2-D core::DynamicSolver2D
+// (makeSolver2D); a 3-D solver only needs another adapter and factory.
 //
 // Times are seconds on any fixed epoch (the node passes stamp - first stamp ever received); the
 // solver's own time is t - t0, where t0 is the time of the sample that (re)started it.
@@ -18,11 +21,17 @@
 //  * non-finite coordinates: dropped, state kept.
 //  * time not increasing: dropped; time going back by more than `loop_back` (a bag loop):
 //    re-initialised as for a first sample.
+//  * gap longer than `max_gap` since the last accepted sample: re-initialised as for a first
+//    sample (the motion in between is unknown).
+//  * a jump implying a top speed above `max_speed`: dropped; `jumps_to_reinit` such samples in a
+//    row (the source really moved, e.g. a simulator reset): re-initialised at the new position.
 //  * solver failure: re-initialised from statics with the top at the sample's position.
+//  * reset(): re-initialised from statics at the last accepted top position (service ~reset);
+//    reinitialiseAt(x, z): the same with the top at (x, z) (service ~solve_static with reinitialise).
 #pragma once
 
+#include <functional>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "mooring_dynamics/core/dynamics2d.hpp"
@@ -32,9 +41,41 @@
 namespace mooring_dynamics {
 namespace ros_bridge {
 
+/// The dynamic cable solver as the lockstep policy sees it: started from statics at construction,
+/// told the top path of the next interval, advanced to a time. Positions in the problem frame [m],
+/// times in solver seconds (0 = the static start).
+class LockstepSolver {
+ public:
+  virtual ~LockstepSolver() = default;
+  /// The static solution the run started from (solver time 0).
+  virtual const core::StaticResult& initialStatic() const = 0;
+  /// Top path of the next advance: linear from (x0, z0) at t0 to (x1, z1) at t1 > t0, with the
+  /// velocity of that segment; held at the end points outside [t0, t1].
+  virtual void setTopSegment(double t0, double x0, double z0, double t1, double x1, double z1) = 0;
+  /// Advance to solver time t (base steps, the last one shortened to land on t).
+  virtual core::StepReport advanceTo(double t) = 0;
+  /// Current per-node values and end forces.
+  virtual core::StaticResult snapshot() const = 0;
+  virtual double time() const = 0;
+};
+
+/// Builds a solver started from the statics of `problem` (its top boundary as given). Throws
+/// std::invalid_argument (invalid problem) or std::runtime_error (statics do not converge).
+using LockstepSolverFactory = std::function<std::unique_ptr<LockstepSolver>(const core::Problem&)>;
+
+/// core::DynamicSolver2D behind LockstepSolver.
+LockstepSolverFactory makeSolver2D();
+
+/// The exact top input the 2-D adapter gives the core for setTopSegment (shared with tests that
+/// run the core offline on the same track).
+core::TopInput linearTopInput(double tau, double t0, double x0, double z0, double t1, double x1, double z1);
+
 struct LockstepOptions {
   double start_tolerance = 0.01;  ///< [m] first sample farther than this from the static top: re-solve statics there
-  double loop_back = 1.0;        ///< [s] time going back by more than this re-initialises (bag loop)
+  double loop_back = 1.0;         ///< [s] time going back by more than this re-initialises (bag loop)
+  double max_gap = 5.0;           ///< [s] a sample later than this after the last accepted one re-initialises; <= 0: never
+  double max_speed = 50.0;        ///< [m/s] a jump implying a faster top is dropped; <= 0: no check
+  int jumps_to_reinit = 3;        ///< this many jumps in a row re-initialise at the new position
 };
 
 class LockstepDriver {
@@ -42,26 +83,36 @@ class LockstepDriver {
   enum class Outcome {
     Started,          ///< first sample: solver (re)built, state = static start; publish
     Advanced,         ///< solver advanced to the sample's time; publish
-    Reinitialised,    ///< time jumped back (bag loop): solver rebuilt at this sample; publish
+    Reinitialised,    ///< time jumped back (bag loop), a long gap, repeated jumps, reset: rebuilt from statics; publish
     RecoveredFailure, ///< solver failed; rebuilt from statics at this sample; publish
-    Dropped,          ///< sample ignored (non-finite, time not increasing, cannot start); state kept
+    Dropped,          ///< sample ignored (non-finite, time not increasing, jump, cannot start); state kept
   };
   struct Result {
     Outcome outcome = Outcome::Dropped;
     bool publish = false;           ///< a new state is available (state())
+    bool start_failed = false;      ///< statics could not be solved at the requested top (Dropped)
     std::string message;            ///< what happened (for logs), empty for a plain Advanced
     core::StepReport report;        ///< of advanceTo (Advanced / RecoveredFailure)
+    double advanced = 0.0;          ///< [s] solver time covered by this sample (Advanced)
   };
 
   /// `problem` is the loaded problem; `dt` the base time step to use (overrides problem.dynamics.dt).
-  /// The top motion of the problem file is replaced by the samples (its `prescribe` flag is kept).
-  /// Builds the first solver (static start) at once: throws std::invalid_argument /
-  /// std::runtime_error like core::DynamicSolver2D when the problem's statics fail.
-  LockstepDriver(const core::Problem& problem, double dt, const LockstepOptions& options = LockstepOptions());
+  /// The top motion of the problem file is replaced by the samples (followed by position, with
+  /// velocity and position feedback). Builds the first solver (static start) at once: throws
+  /// std::invalid_argument / std::runtime_error like the factory when the problem's statics fail.
+  LockstepDriver(const core::Problem& problem, double dt, const LockstepOptions& options = LockstepOptions(),
+                 LockstepSolverFactory factory = makeSolver2D());
   ~LockstepDriver();
 
   /// One sample: top at (x, z) [m] at time t [s].
   Result onSample(double t, double x, double z);
+
+  /// Re-initialise from statics at the last accepted top position, keeping the time of the last
+  /// sample (the next sample advances from there). Dropped (nothing to do) before the first sample.
+  Result reset();
+  /// Re-initialise from statics with the top held at (x, z), at the time of the last sample.
+  /// Before the first sample: Dropped (the run starts at the first sample anyway).
+  Result reinitialiseAt(double x, double z, const std::string& why);
 
   bool started() const { return started_; }
   /// Static top position of the problem (where the first sample should be) [m].
@@ -69,22 +120,28 @@ class LockstepDriver {
   double staticTopZ() const { return static_top_z_; }
   /// Solver time of the current state [s] (t - t0).
   double solverTime() const;
+  /// Time of the last accepted sample [s] (valid once started).
+  double lastTime() const { return last_time_; }
   /// Current state (valid once a sample was published).
   const core::StaticResult& state() const { return state_; }
+  /// The problem the solver runs (the file's, with the samples as top motion and dt applied).
+  const core::Problem& problem() const { return problem_; }
 
  private:
   Result start(double t, double x, double z, Outcome outcome, const std::string& why);
-  std::unique_ptr<core::DynamicSolver2D> build(double x, double z, bool at_problem_top, std::string& error) const;
+  std::unique_ptr<LockstepSolver> build(double x, double z, bool at_problem_top, std::string& error) const;
 
   core::Problem problem_;
   LockstepOptions options_;
-  std::unique_ptr<core::DynamicSolver2D> solver_;
+  LockstepSolverFactory factory_;
+  std::unique_ptr<LockstepSolver> solver_;
   bool solver_is_pristine_ = false;  ///< solver_ is the problem's static start, not yet advanced
   double static_top_x_ = 0.0, static_top_z_ = 0.0;
   bool started_ = false;
   double t0_ = 0.0;                  ///< sample time of solver time 0
   double prev_t_ = 0.0, prev_x_ = 0.0, prev_z_ = 0.0;  ///< last accepted sample (solver time, position)
   double last_time_ = 0.0;           ///< time of the last accepted sample (epoch time)
+  int jumps_ = 0;                    ///< consecutive samples dropped as jumps
   core::StaticResult state_;
 };
 

@@ -10,8 +10,17 @@
 //   seabed/0      CUBE: flat seabed patch at the seabed elevation (thin slab just below it), or
 //                 TRIANGLE_LIST following the bottom profile when the environment has one
 //   sea_surface/0 CUBE: translucent thin slab at z = 0 (mean sea surface)
+//   bodies/k      SPHERE per inline body (floats yellow, weights dark grey), at its arclength,
+//                 drawn at its diameter (at least the automatic sphere size)
+//   buoy/0        CYLINDER or SPHERE: the surface buoy at the top, when the problem has one
+//   scale/0       CUBE_LIST: colour bar of the tension colours, beside the drawing
+//   scale/1, /2   TEXT_VIEW_FACING: its bottom and top values ("1.2 kN"); scale/3 its title
 // Sizes scale with the extent of the drawing (line width ~0.5 % of it) times `scale`.
 #pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
 
 #include <visualization_msgs/MarkerArray.h>
 
@@ -21,10 +30,33 @@
 namespace mooring_dynamics {
 namespace ros_bridge {
 
+/// A point body on the line, for drawing and tf frames.
+struct BodyMark {
+  std::string name;       ///< body name from the problem file, suffixed _k when it appears more than once
+  double s = 0.0;         ///< unstretched arclength from the anchor [m]
+  double diameter = 0.0;  ///< [m]
+  bool buoyant = false;   ///< wet weight < 0
+};
+
+/// Inline bodies of a problem, anchor to top, with unique names.
+std::vector<BodyMark> bodyMarks(const core::Problem& problem);
+
+/// Position [m] on the drawn line at arclength s (linear between nodes; the nearest end outside).
+geometry_msgs::Point pointAtArclength(const CableState& state, double s);
+
 struct MarkerOptions {
   double scale = 1.0;       ///< multiplies the automatic marker sizes (line width, spheres, text) [-]
   bool sea_surface = true;  ///< draw the z = 0 plane
+  /// Tension colour range [N]; NaN (default): the lowest and highest tension of each state.
+  double tension_min = std::nan(""), tension_max = std::nan("");
+  std::vector<BodyMark> bodies;       ///< inline bodies to draw
+  bool top_buoy = false;              ///< draw a surface buoy at the top
+  bool buoy_cylinder = false;         ///< its shape (vertical cylinder, else sphere)
+  double buoy_diameter = 0.0, buoy_height = 0.0;  ///< [m]
 };
+
+/// Marker options for a problem: bodies and the top buoy, `scale`.
+MarkerOptions markerOptionsFor(const core::Problem& problem, double scale);
 
 /// Colour for tension t on the scale [tmin, tmax]: hue from blue (tmin) to red (tmax).
 std_msgs::ColorRGBA tensionColor(double t, double tmin, double tmax);

@@ -1,0 +1,80 @@
+// Health of the lockstep dynamic mode, summarised for diagnostic_msgs (ROS-free: the node feeds
+// it wall-clock seconds and driver results, and turns the summary into a DiagnosticStatus).
+//
+// One summary per diagnostics period ("window"): real-time factor, step cuts, Newton iterations,
+// slack events (a published state whose min tension <= 0 after one that was not), dropped and
+// re-initialised samples, the last error. Levels (docs/ros_interface.md, "Diagnostics"):
+//   ERROR  the solver failed in the window (recovered by re-initialising), or statics could not be
+//          solved at a requested top (run not started / sample dropped)
+//   WARN   no motion for more than `motion_timeout` (silent source, or none yet); input dropped
+//          (NaN, old stamp, unknown frame, jump); re-initialised (bag loop, gap, reset); step cuts;
+//          real-time factor below `min_real_time_factor`; the line is slack now
+//   OK     otherwise
+// The message lists the reasons of the level, most severe first.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mooring_dynamics/core/result.hpp"
+#include "mooring_dynamics/ros/lockstep.hpp"
+
+namespace mooring_dynamics {
+namespace ros_bridge {
+
+struct MonitorOptions {
+  double motion_timeout = 1.0;        ///< [s, wall] no motion for longer than this: WARN (silent source)
+  double min_real_time_factor = 1.0;  ///< window real-time factor below this: WARN (cannot keep up)
+};
+
+class LockstepMonitor {
+ public:
+  enum Level { OK = 0, WARN = 1, ERROR = 2 };  // values of diagnostic_msgs::DiagnosticStatus levels
+  struct Summary {
+    Level level = OK;
+    std::string message;
+    std::vector<std::pair<std::string, std::string>> values;  ///< key (with unit), value
+  };
+
+  explicit LockstepMonitor(const MonitorOptions& options = MonitorOptions(), double wall_now = 0.0);
+
+  /// A motion message arrived at wall time `wall_now` (before any check).
+  void onMotionReceived(double wall_now);
+  /// Input rejected before the driver (bad frame, tf lookup failed, NaN): a WARN reason.
+  void onInputRejected(double wall_now, const std::string& message);
+  /// A driver result; `wall_spent` [s] the wall time of the call; `state` the published state (if
+  /// any); `solver_time` [s] the solver's time after the call.
+  void onResult(const LockstepDriver::Result& r, double wall_now, double wall_spent,
+                const core::StaticResult* state, double solver_time);
+
+  /// Summary of the window since the last call (and totals); starts a new window.
+  Summary summarise(double wall_now);
+
+  long slackEvents() const { return total_.slack_events + window_.slack_events; }
+  double secondsSinceMotion(double wall_now) const { return wall_now - last_motion_wall_; }
+  bool silent(double wall_now) const { return secondsSinceMotion(wall_now) > options_.motion_timeout; }
+  bool everReceived() const { return ever_received_; }
+
+ private:
+  struct Counts {
+    long samples = 0, published = 0, dropped = 0, rejected = 0, reinit = 0, failures = 0, start_failures = 0;
+    long steps = 0, cuts = 0, newton = 0, slack_events = 0;
+    double sim = 0.0, wall = 0.0;  ///< solver time advanced, wall time spent [s]
+  };
+  static void add(Counts& a, const Counts& b);
+  void setError(double wall_now, const std::string& message);
+
+  MonitorOptions options_;
+  Counts window_, total_;
+  double last_motion_wall_ = 0.0;
+  bool ever_received_ = false;
+  std::string last_error_, last_drop_, last_reinit_;
+  double last_error_wall_ = -1.0;
+  bool slack_now_ = false;
+  bool have_state_ = false;
+  double min_tension_ = 0.0, top_tension_ = 0.0, solver_time_ = 0.0;
+};
+
+}  // namespace ros_bridge
+}  // namespace mooring_dynamics

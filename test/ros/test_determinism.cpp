@@ -1,0 +1,198 @@
+// Determinism of the lockstep mode: one ship track (stamped fairlead positions) gives the same
+// top-tension series
+//   * live: published as PoseStamped with wall-clock node time (test_determinism.test),
+//   * replayed from a bag with `rosbag play --clock` and use_sim_time (test_determinism.replay.test),
+//   * offline: core::DynamicSolver2D on the same problem and the same top motion table (linear
+//     between the samples, the top followed by position), without ROS,
+// to kDeterminism relative. Problem test/data/small_catenary.yaml, dt 0.1 s, track at 10 Hz.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/PoseStamped.h>
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+
+#include "mooring_dynamics/CableState.h"
+#include "mooring_dynamics/core/dynamics2d.hpp"
+#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/ros/lockstep.hpp"
+
+using mooring_dynamics::CableState;
+namespace core = mooring_dynamics::core;
+
+namespace {
+
+// The same arithmetic on the same numbers: any difference is a bug (message conversion, stamp
+// handling, dropped or reordered samples). 1e-9 leaves room for nothing but rounding.
+constexpr double kDeterminism = 1e-9;
+constexpr double kDt = 0.1;          // [s] base step = sample spacing
+constexpr int kSamples = 61;         // 6 s at 10 Hz
+const ros::Time kStart(2000.0);      // first stamp (sim time in the bag)
+
+std::string g_mode = "live", g_node = "/live";
+
+struct Sample {
+  ros::Time stamp;
+  double x, z;
+};
+
+/// Ship track: starts at the static top (100, 0) m; surge 0.3 m (period 5 s) and heave 0.1 m
+/// (period 3 s), both starting from 0 so the track starts at rest position.
+std::vector<Sample> track() {
+  const double kPi = 3.141592653589793;
+  std::vector<Sample> v;
+  for (int k = 0; k < kSamples; ++k) {
+    const double t = kDt * k;
+    v.push_back({kStart + ros::Duration(t), 100.0 - 0.3 * std::sin(2 * kPi * t / 5.0),
+                 0.1 * std::sin(2 * kPi * t / 3.0)});
+  }
+  return v;
+}
+
+core::Problem problem() {
+  return core::loadProblemFromFile(std::string(MD_SOURCE_DIR) + "/test/data/small_catenary.yaml");
+}
+
+/// The core alone on the same track, as the lockstep node sets it up: statics of the problem,
+/// then per sample the top moves linearly from the previous sample (position followed with
+/// velocity and feedback), advanced to the sample's time after the first.
+std::vector<double> offlineTopTension(const std::vector<Sample>& tr) {
+  core::Problem p = problem();
+  p.dynamics.dt = kDt;
+  p.dynamics.output_interval = 0.0;
+  p.dynamics.top_motion = core::TopMotion();
+  p.dynamics.top_motion.prescribe_position = true;
+  p.dynamics.duration = kDt;
+  core::DynamicSolver2D s(p);
+  std::vector<double> out{s.snapshot().nodes.back().tension};
+  double tp = 0.0, xp = s.initialStatic().nodes.back().x, zp = s.initialStatic().nodes.back().z;
+  for (std::size_t k = 1; k < tr.size(); ++k) {
+    const double t = (tr[k].stamp - tr[0].stamp).toSec();
+    const double x = tr[k].x, z = tr[k].z;
+    s.setTopInput([=](double tau) {
+      return mooring_dynamics::ros_bridge::linearTopInput(tau, tp, xp, zp, t, x, z);
+    });
+    const core::StepReport r = s.advanceTo(t);
+    EXPECT_TRUE(r.ok) << r.message;
+    out.push_back(s.snapshot().nodes.back().tension);
+    tp = t;
+    xp = x;
+    zp = z;
+  }
+  return out;
+}
+
+/// The same track as a problem-file position_table through core::runDynamic (cable_sim dynamic).
+std::vector<double> positionTableTopTension(const std::vector<Sample>& tr) {
+  core::Problem p = problem();
+  p.dynamics.dt = kDt;
+  p.dynamics.output_interval = 0.0;
+  p.dynamics.duration = (tr.back().stamp - tr.front().stamp).toSec();
+  p.dynamics.top_motion = core::TopMotion();
+  p.dynamics.top_motion.type = core::TopMotion::Type::PositionTable;
+  p.dynamics.top_motion.prescribe_position = true;
+  for (const Sample& s : tr) p.dynamics.top_motion.table.push_back({(s.stamp - tr[0].stamp).toSec(), s.x, s.z});
+  return core::runDynamic(p).top_tension;
+}
+
+geometry_msgs::PoseStamped toPose(const Sample& s) {
+  geometry_msgs::PoseStamped m;
+  m.header.stamp = s.stamp;
+  m.header.frame_id = "world";
+  m.pose.position.x = s.x;
+  m.pose.position.z = s.z;
+  m.pose.orientation.w = 1.0;
+  return m;
+}
+
+}  // namespace
+
+TEST(Determinism, NodeMatchesCoreOffline) {
+  const std::vector<Sample> tr = track();
+  ros::NodeHandle nh;
+  std::map<uint64_t, double> got;
+  ros::Subscriber sub = nh.subscribe<CableState>(g_node + "/cable_state", 1000, [&](const CableState::ConstPtr& m) {
+    got[m->header.stamp.toNSec()] = m->tension.back();
+  });
+  const ros::WallTime connect_end = ros::WallTime::now() + ros::WallDuration(15.0);
+  while (sub.getNumPublishers() == 0 && ros::WallTime::now() < connect_end) {
+    ros::spinOnce();
+    ros::WallDuration(0.05).sleep();
+  }
+  ASSERT_GT(sub.getNumPublishers(), 0) << "no connection to " << g_node;
+
+  auto waitAll = [&](double timeout) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::ok() && ros::WallTime::now() < end && got.size() < tr.size()) {
+      ros::spinOnce();
+      ros::WallDuration(0.005).sleep();
+    }
+  };
+
+  if (g_mode == "live") {
+    ros::Publisher pub = nh.advertise<geometry_msgs::PoseStamped>(g_node + "/top_pose", 100);
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(15.0);
+    while (pub.getNumSubscribers() == 0 && ros::WallTime::now() < end) ros::WallDuration(0.05).sleep();
+    ASSERT_GT(pub.getNumSubscribers(), 0);
+    for (const Sample& s : tr) {
+      pub.publish(toPose(s));
+      ros::WallDuration(0.02).sleep();  // about 50 Hz: faster than real time, slower than the solver
+      ros::spinOnce();
+    }
+  } else {
+    // Write the bag, then play it with --clock (the node runs on sim time).
+    char path[] = "/tmp/md_determinism_XXXXXX";
+    const int fd = mkstemp(path);
+    ASSERT_GE(fd, 0);
+    close(fd);
+    const std::string bag_file = std::string(path) + ".bag";
+    std::remove(path);
+    {
+      rosbag::Bag bag(bag_file, rosbag::bagmode::Write);
+      for (const Sample& s : tr) bag.write(g_node + "/top_pose", s.stamp, toPose(s));
+    }
+    const std::string cmd = "rosbag play --clock -q --wait-for-subscribers -r 5 " + bag_file + " >/dev/null 2>&1";
+    const int rc = std::system(cmd.c_str());
+    ASSERT_EQ(rc, 0) << cmd;
+    std::remove(bag_file.c_str());
+  }
+  waitAll(30.0);
+  ASSERT_EQ(got.size(), tr.size()) << "the node did not answer every sample (" << g_mode << ")";
+
+  const std::vector<double> ref = offlineTopTension(tr);
+  ASSERT_EQ(ref.size(), tr.size());
+  double worst = 0.0;
+  std::size_t k = 0;
+  for (const Sample& s : tr) {
+    const double node = got[s.stamp.toNSec()];
+    const double rel = std::abs(node - ref[k]) / std::abs(ref[k]);
+    worst = std::max(worst, rel);
+    EXPECT_LE(rel, kDeterminism) << "sample " << k << ": node " << node << " N, core " << ref[k] << " N";
+    ++k;
+  }
+  RecordProperty("worst_relative_difference", std::to_string(worst));
+
+  // For information (not asserted): the same track as a problem-file position_table through
+  // core::runDynamic, which prescribes the table's velocity differently at the rows.
+  const std::vector<double> tab = positionTableTopTension(tr);
+  double worst_tab = 0.0;
+  for (std::size_t i = 0; i < std::min(tab.size(), ref.size()); ++i)
+    worst_tab = std::max(worst_tab, std::abs(tab[i] - ref[i]) / std::abs(ref[i]));
+  RecordProperty("position_table_worst_relative_difference", std::to_string(worst_tab));
+  std::printf("worst relative difference node vs core: %.3g; position_table run vs core: %.3g\n", worst, worst_tab);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_determinism");
+  ros::NodeHandle pnh("~");
+  pnh.param<std::string>("mode", g_mode, g_mode);
+  pnh.param<std::string>("node", g_node, g_node);
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,202 @@
+// Unit tests of the ROS-free lockstep policy (LockstepDriver) and health summary
+// (LockstepMonitor), no master needed. Problem: test/data/small_catenary.yaml (150 m of chain,
+// anchor (0, -100) m, static top (100, 0) m, 76 nodes), dt = 0.1 s.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/ros/lockstep.hpp"
+#include "mooring_dynamics/ros/lockstep_monitor.hpp"
+#include "mooring_dynamics/ros/markers.hpp"
+
+using namespace mooring_dynamics;
+using ros_bridge::LockstepDriver;
+using ros_bridge::LockstepMonitor;
+using O = LockstepDriver::Outcome;
+
+namespace {
+
+constexpr double kDt = 0.1;       // [s] base step
+constexpr double kTopX = 100.0;   // [m] static top of the test problem
+constexpr double kTopZ = 0.0;
+// Statics re-solved at the same top converge to the same shape: 1e-6 relative is far above the
+// solver tolerance (1e-9 on sigma) and far below any physical change tested here.
+constexpr double kSameStatics = 1e-6;
+
+core::Problem problem() { return core::loadProblemFromFile(std::string(MD_SOURCE_DIR) + "/test/data/small_catenary.yaml"); }
+
+}  // namespace
+
+TEST(LockstepDriver, StartAdvanceAndGap) {
+  ros_bridge::LockstepOptions o;
+  o.max_gap = 2.0;
+  LockstepDriver d(problem(), kDt, o);
+  EXPECT_EQ(d.onSample(0.0, kTopX, kTopZ).outcome, O::Started);
+  const auto a = d.onSample(0.1, kTopX, kTopZ + 0.01);
+  EXPECT_EQ(a.outcome, O::Advanced);
+  EXPECT_NEAR(a.advanced, 0.1, 1e-12);
+  EXPECT_GE(a.report.steps, 1);
+  // 2.5 s later (> max_gap): re-initialised from statics at the new sample.
+  const auto g = d.onSample(2.6, kTopX, kTopZ);
+  EXPECT_EQ(g.outcome, O::Reinitialised);
+  EXPECT_TRUE(g.publish);
+  EXPECT_NE(g.message.find("gap of 2.5 s"), std::string::npos) << g.message;
+  EXPECT_DOUBLE_EQ(d.solverTime(), 0.0);
+  // 1.9 s later (< max_gap): advanced over the gap.
+  EXPECT_EQ(d.onSample(4.5, kTopX, kTopZ).outcome, O::Advanced);
+  EXPECT_NEAR(d.solverTime(), 1.9, 1e-9);
+}
+
+TEST(LockstepDriver, JumpDroppedThenReinitialised) {
+  LockstepDriver d(problem(), kDt);  // max_speed 50 m/s, 3 jumps re-initialise
+  d.onSample(0.0, kTopX, kTopZ);
+  d.onSample(0.1, kTopX, kTopZ);
+  // 20 m in 0.1 s = 200 m/s: dropped.
+  auto j = d.onSample(0.2, kTopX - 20.0, kTopZ);
+  EXPECT_EQ(j.outcome, O::Dropped);
+  EXPECT_FALSE(j.publish);
+  EXPECT_NE(j.message.find("max_speed = 50 m/s"), std::string::npos) << j.message;
+  // A good sample resets the count.
+  EXPECT_EQ(d.onSample(0.3, kTopX, kTopZ).outcome, O::Advanced);
+  EXPECT_EQ(d.onSample(0.4, kTopX - 20.0, kTopZ).outcome, O::Dropped);
+  EXPECT_EQ(d.onSample(0.5, kTopX - 20.0, kTopZ).outcome, O::Dropped);
+  const auto r = d.onSample(0.6, kTopX - 20.0, kTopZ);
+  EXPECT_EQ(r.outcome, O::Reinitialised) << r.message;
+  EXPECT_NEAR(d.state().nodes.back().x, kTopX - 20.0, 1e-6);
+}
+
+TEST(LockstepDriver, ResetAndReinitialiseAt) {
+  LockstepDriver d(problem(), kDt);
+  EXPECT_EQ(d.reset().outcome, O::Dropped) << "nothing to reset before the first sample";
+  d.onSample(0.0, kTopX, kTopZ);
+  for (int k = 1; k <= 5; ++k) d.onSample(0.1 * k, kTopX - 0.1 * k, kTopZ);
+  const auto r = d.reset();
+  EXPECT_EQ(r.outcome, O::Reinitialised);
+  ASSERT_TRUE(r.publish);
+  EXPECT_DOUBLE_EQ(d.solverTime(), 0.0);
+  EXPECT_NEAR(d.state().nodes.back().x, kTopX - 0.5, 1e-9);
+  // Equal to a static solve at that top.
+  core::Problem p = problem();
+  p.top.type = core::TopBoundary::Type::Position;
+  p.top.x = kTopX - 0.5;
+  p.top.z = kTopZ;
+  LockstepDriver fresh(p, kDt);
+  const double t_ref = fresh.onSample(0.0, kTopX - 0.5, kTopZ).publish ? fresh.state().nodes.back().tension : 0.0;
+  EXPECT_NEAR(d.state().nodes.back().tension, t_ref, kSameStatics * t_ref);
+  // The next sample advances from the reset state at the old time base.
+  EXPECT_EQ(d.onSample(0.6, kTopX - 0.5, kTopZ).outcome, O::Advanced);
+  EXPECT_NEAR(d.solverTime(), 0.1, 1e-9);
+
+  // Out of reach (the line reaches 180 m): refused, the run goes on.
+  const auto far = d.reinitialiseAt(400.0, 0.0, "test");
+  EXPECT_FALSE(far.publish);
+  EXPECT_TRUE(d.started());
+  EXPECT_NE(far.message.find("the run goes on unchanged"), std::string::npos) << far.message;
+  EXPECT_EQ(d.onSample(0.7, kTopX - 0.5, kTopZ).outcome, O::Advanced);
+  const auto near = d.reinitialiseAt(kTopX - 1.0, kTopZ, "test");
+  EXPECT_TRUE(near.publish);
+  EXPECT_NEAR(d.state().nodes.back().x, kTopX - 1.0, 1e-9);
+}
+
+TEST(LockstepDriver, BadSamples) {
+  LockstepDriver d(problem(), kDt);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(d.onSample(0.0, nan, 0.0).outcome, O::Dropped);
+  EXPECT_FALSE(d.started());
+  // Out of reach at the start: statics fail, start_failed, still not started.
+  const auto s = d.onSample(0.0, 400.0, 0.0);
+  EXPECT_EQ(s.outcome, O::Dropped);
+  EXPECT_TRUE(s.start_failed);
+  EXPECT_FALSE(d.started());
+  EXPECT_EQ(d.onSample(0.1, kTopX, kTopZ).outcome, O::Started);
+  EXPECT_EQ(d.onSample(0.1, kTopX, kTopZ).outcome, O::Dropped);   // same stamp
+  EXPECT_EQ(d.onSample(-0.5, kTopX, kTopZ).outcome, O::Dropped);  // back by 0.6 s
+  EXPECT_EQ(d.onSample(-1.5, kTopX, kTopZ).outcome, O::Reinitialised);  // back by 1.6 s: bag loop
+}
+
+TEST(LockstepMonitor, Levels) {
+  ros_bridge::MonitorOptions mo;
+  mo.motion_timeout = 1.0;
+  LockstepMonitor m(mo, 0.0);
+  auto s = m.summarise(0.5);
+  EXPECT_EQ(s.level, LockstepMonitor::OK) << s.message;
+  s = m.summarise(2.0);
+  EXPECT_EQ(s.level, LockstepMonitor::WARN);
+  EXPECT_NE(s.message.find("waiting for motion"), std::string::npos) << s.message;
+
+  LockstepDriver d(problem(), kDt);
+  m.onMotionReceived(2.1);
+  auto r = d.onSample(0.0, kTopX, kTopZ);
+  m.onResult(r, 2.1, 0.0, &d.state(), d.solverTime());
+  m.onMotionReceived(2.2);
+  r = d.onSample(0.1, kTopX, kTopZ);
+  m.onResult(r, 2.2, 0.01, &d.state(), d.solverTime());  // 0.1 s simulated in 0.01 s: RTF 10
+  s = m.summarise(2.3);
+  EXPECT_EQ(s.level, LockstepMonitor::OK) << s.message;
+  EXPECT_NE(s.message.find("real-time factor 10"), std::string::npos) << s.message;
+
+  // Slow: 0.1 s simulated in 0.2 s -> RTF 0.5 < 1: WARN.
+  m.onMotionReceived(2.4);
+  r = d.onSample(0.2, kTopX, kTopZ);
+  m.onResult(r, 2.4, 0.2, &d.state(), d.solverTime());
+  s = m.summarise(2.5);
+  EXPECT_EQ(s.level, LockstepMonitor::WARN);
+  EXPECT_NE(s.message.find("real-time factor 0.50 < 1"), std::string::npos) << s.message;
+
+  // Silent for 3 s after motion: WARN naming the silence.
+  s = m.summarise(5.5);
+  EXPECT_EQ(s.level, LockstepMonitor::WARN);
+  EXPECT_NE(s.message.find("no motion for 3.1 s"), std::string::npos) << s.message;
+
+  // A rejected input and a solver failure in one window: ERROR first, then the warning.
+  m.onMotionReceived(5.6);
+  m.onInputRejected(5.6, "header.frame_id = \"nowhere\": no transform");
+  LockstepDriver::Result fail;
+  fail.outcome = O::RecoveredFailure;
+  fail.publish = false;
+  fail.message = "dynamic solver failed: t = 1 s";
+  m.onResult(fail, 5.6, 0.01, nullptr, 0.0);
+  s = m.summarise(5.7);
+  EXPECT_EQ(s.level, LockstepMonitor::ERROR);
+  EXPECT_EQ(s.message.find("1 solver failure"), 0u) << s.message;
+  EXPECT_NE(s.message.find("nowhere"), std::string::npos) << s.message;
+  bool last_error = false;
+  for (const auto& kv : s.values)
+    if (kv.first == "last error") last_error = kv.second.find("solver failed") != std::string::npos;
+  EXPECT_TRUE(last_error);
+}
+
+TEST(LockstepMonitor, SlackEvents) {
+  LockstepMonitor m;
+  core::StaticResult st;
+  st.nodes.resize(3);
+  LockstepDriver::Result r;
+  r.outcome = O::Advanced;
+  r.publish = true;
+  const double tensions[] = {100.0, -5.0, -1.0, 50.0, 0.0};  // slack, stays slack, taut, slack: 2 events
+  for (double t : tensions) {
+    for (auto& n : st.nodes) n.tension = 200.0;
+    st.nodes[1].tension = t;
+    m.onResult(r, 0.0, 0.0, &st, 0.0);
+  }
+  EXPECT_EQ(m.slackEvents(), 2);
+  const auto s = m.summarise(0.1);
+  EXPECT_EQ(s.level, LockstepMonitor::WARN);
+  EXPECT_NE(s.message.find("line slack (min tension 0.0 N)"), std::string::npos) << s.message;
+  for (const auto& kv : s.values)
+    if (kv.first == "slack events (total)") EXPECT_EQ(kv.second, "2");
+}
+
+TEST(Markers, BodiesOfSTether) {
+  const core::Problem p = core::loadProblemFromFile(std::string(MD_SOURCE_DIR) + "/config/s_tether.yaml");
+  const auto b = ros_bridge::bodyMarks(p);
+  ASSERT_EQ(b.size(), 1u + 3u + 5u + 17u);
+  EXPECT_EQ(b[0].name, "auv_dock");
+  EXPECT_NEAR(b[0].s, 35.0, 1e-12);
+  EXPECT_EQ(b[1].name, "float_large_0");
+  EXPECT_TRUE(b[1].buoyant);
+  EXPECT_FALSE(b[0].buoyant);
+}
