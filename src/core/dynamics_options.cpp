@@ -21,6 +21,8 @@ std::string TopMotion::validate() const {
     case Type::Hold:
     case Type::WaveFollower:
       return {};
+    case Type::ShipTrack:
+      return ship_track.validate("dynamics.top_motion");
     case Type::Sinusoid:
       if (!std::isfinite(amplitude_x)) return bad(k + "amplitude_x", amplitude_x, "must be finite");
       if (!std::isfinite(amplitude_y)) return bad(k + "amplitude_y", amplitude_y, "must be finite");

@@ -98,12 +98,44 @@ const std::vector<MotionTypeName>& motionTypes() {
       {"velocity_table", TopMotion::Type::VelocityTable, "[t, vx, vz]", "[t, vx, vy, vz]"},
       {"force_table", TopMotion::Type::ForceTable, "[t, fx, fz]", "[t, fx, fy, fz]"},
       {"wave_follower", TopMotion::Type::WaveFollower, nullptr, nullptr},
+      {"ship_track", TopMotion::Type::ShipTrack, nullptr, nullptr},
   };
   return list;
 }
 
+/// `type: ship_track` keys of a top_motion map: speed, heading_deg and the legs, each exactly one
+/// of {straight: s}, {turn: {radius: m, angle_deg: deg}}, {heading_deg: deg}.
+void readShipTrack(const Map& m, ShipTrack& st) {
+  st = ShipTrack{};
+  st.speed = m.number("speed", Range::Positive);
+  st.heading = m.number("heading_deg", 0.0, Range::Any) * kDegToRad;
+  if (!presentAndNotNull(m, "legs")) return;
+  const std::string kinds = "a leg is exactly one of {straight: SECONDS}, {turn: {radius: M, angle_deg: DEG}}, "
+                            "{heading_deg: DEG}";
+  for (const Item& li : listItems(m.at("legs"))) {
+    if (!li.node.IsMap()) li.wrongType("a map: " + kinds);
+    const Map lm(li, {"straight", "turn", "heading_deg"});
+    std::vector<std::string> given;
+    for (const char* k : {"straight", "turn", "heading_deg"})
+      if (lm.has(k)) given.push_back(k);
+    if (given.size() != 1)
+      throw ProblemError(li.path + ": " + (given.empty() ? std::string("no leg given") : "has " + joinList(given) + " at once") +
+                         "; " + kinds + lineSuffix(li.mark));
+    if (lm.has("straight")) {
+      st.legs.push_back(ShipLeg::straight(lm.number("straight", Range::NonNegative)));
+    } else if (lm.has("turn")) {
+      const Map tm(lm.at("turn"), {"radius", "angle_deg"});
+      const double radius = tm.number("radius", Range::Positive);
+      st.legs.push_back(ShipLeg::turn(radius, tm.number("angle_deg", Range::Any) * kDegToRad));
+    } else {
+      st.legs.push_back(ShipLeg::headingChange(lm.number("heading_deg", Range::Any) * kDegToRad));
+    }
+  }
+}
+
 void readTopMotion(const Item& it, TopMotion& tm) {
-  const Map m(it, {"type", "amplitude_x", "amplitude_y", "amplitude_z", "period", "phase_deg", "table", "prescribe"});
+  const Map m(it, {"type", "amplitude_x", "amplitude_y", "amplitude_z", "period", "phase_deg", "table", "speed",
+                   "heading_deg", "legs", "prescribe"});
   std::vector<std::string> names;
   for (const auto& t : motionTypes()) names.push_back(t.name);
   const Item ti = m.required("type", "one of " + joinList(names));
@@ -120,6 +152,9 @@ void readTopMotion(const Item& it, TopMotion& tm) {
   const bool sinusoid = mt->type == TopMotion::Type::Sinusoid;
   for (const char* k : {"amplitude_x", "amplitude_y", "amplitude_z", "period", "phase_deg"})
     if (!sinusoid && m.has(k)) m.at(k).fail("only used with type: sinusoid");
+  const bool ship = mt->type == TopMotion::Type::ShipTrack;
+  for (const char* k : {"speed", "heading_deg", "legs"})
+    if (!ship && m.has(k)) m.at(k).fail("only used with type: ship_track");
   if (mt->columns == nullptr && m.has("table"))
     m.at("table").fail("only used with type: position_table, velocity_table or force_table");
 
@@ -153,6 +188,8 @@ void readTopMotion(const Item& it, TopMotion& tm) {
       tm.table.push_back(width == 3 ? TopMotion::Row(v[0], v[1], v[2]) : TopMotion::Row(v[0], v[1], v[2], v[3]));
     }
   }
+
+  if (ship) readShipTrack(m, tm.ship_track);
 
   if (m.has("prescribe")) {
     const Item pi = m.at("prescribe");

@@ -119,6 +119,18 @@ std::function<TopState(double t)> makeTopMotion(const TopMotion& m, double x0, d
         st.vz = v[2];
         return st;
       };
+    case TopMotion::Type::ShipTrack:
+      return [track = m.ship_track, x0, y0, z0](double t) {
+        const ShipPose p = track.at(t, x0, y0);
+        TopState st;
+        st.x = p.x;
+        st.y = p.y;
+        st.z = z0;
+        st.vx = p.vx;
+        st.vy = p.vy;
+        st.heading = p.heading;
+        return st;
+      };
     case TopMotion::Type::WaveFollower:
       return [x0, y0, z0, waves](double t) {
         TopState st = held(x0, y0, z0);
@@ -146,6 +158,8 @@ std::string planarTopMotionError(const TopMotion& m) {
         if (m.table[i].y != 0.0)
           return k + "table[" + std::to_string(i) + "] y = " + fmt(m.table[i].y) + why;
       break;
+    case TopMotion::Type::ShipTrack:
+      return m.ship_track.leavesXAxis("dynamics.top_motion");
     case TopMotion::Type::Hold:
     case TopMotion::Type::WaveFollower:
       break;

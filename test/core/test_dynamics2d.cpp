@@ -590,6 +590,31 @@ TEST(Dynamics2D, RejectsTopMotionOutOfTheXZPlane) {
   EXPECT_NE(e.find("dynamics.top_motion.table[0] = (60, 0, -1): must start at the static top position (60, 0, 0)"),
             std::string::npos)
       << e;
+  // A ship track that turns needs the 3-D model.
+  tm = TopMotion{};
+  tm.type = TopMotion::Type::ShipTrack;
+  tm.ship_track.speed = 0.1;
+  tm.ship_track.legs = {ShipLeg::straight(1.0), ShipLeg::turn(100.0, 0.5)};
+  e = startError(p);
+  EXPECT_NE(e.find("dynamics.top_motion.legs[1].turn.angle_deg"), std::string::npos) << e;
+  EXPECT_NE(e.find("needs the 3-D model"), std::string::npos) << e;
+}
+
+// A ship track straight along x is a planar motion: the 2-D solver tows the top with it.
+TEST(Dynamics2D, StraightShipTrackAlongXTowsTheTop) {
+  Problem p = chainMooring(false);
+  TopMotion& tm = p.dynamics.top_motion;
+  tm.type = TopMotion::Type::ShipTrack;
+  tm.ship_track.speed = 0.2;                      // [m/s]
+  tm.ship_track.heading = 3.14159265358979323846;  // toward -x, back over the anchor
+  tm.ship_track.legs = {ShipLeg::straight(2.0)};
+  tm.prescribe_position = true;
+  p.dynamics.dt = 0.25;
+  DynamicSolver2D solver(p);
+  ASSERT_TRUE(solver.advanceTo(4.0).ok);
+  const StaticResult s = solver.snapshot();
+  EXPECT_NEAR(s.nodes.back().x, 60.0 - 0.2 * 4.0, kGridPositionTol);
+  EXPECT_NEAR(s.nodes.back().z, 0.0, kGridPositionTol);
 }
 
 // --- Jacobian of a time step --------------------------------------------------------------------

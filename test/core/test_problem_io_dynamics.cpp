@@ -3,6 +3,8 @@
 // message names the key path, the value found, the constraint and the line.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -238,6 +240,74 @@ TEST(ProblemIo, DynamicsTopMotion3D) {
                    "dynamics.top_motion.table[0][2]", "finite");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {top_motion: {type: hold, amplitude_y: 1}}\n"),
                    "dynamics.top_motion.amplitude_y = 1", "only used with type: sinusoid");
+}
+
+TEST(ProblemIo, DynamicsShipTrack) {
+  const Problem p = loadProblemFromString(minimalWith(
+      "dynamics:\n  top_motion: {type: ship_track, speed: 9.52, heading_deg: 90, legs: [{straight: 200},\n"
+      "    {turn: {radius: 640, angle_deg: 375}}, {heading_deg: 0}, {straight: 300}, {turn: {radius: 50, angle_deg: -90}}]}\n"));
+  const TopMotion& tm = p.dynamics.top_motion;
+  EXPECT_EQ(tm.type, TopMotion::Type::ShipTrack);
+  const ShipTrack& st = tm.ship_track;
+  EXPECT_EQ(st.speed, 9.52);
+  EXPECT_NEAR(st.heading, kPi / 2, 1e-15);
+  ASSERT_EQ(st.legs.size(), 5u);
+  EXPECT_EQ(st.legs[0].type, ShipLeg::Type::Straight);
+  EXPECT_EQ(st.legs[0].duration, 200.0);
+  EXPECT_EQ(st.legs[1].type, ShipLeg::Type::Turn);
+  EXPECT_EQ(st.legs[1].radius, 640.0);
+  EXPECT_NEAR(st.legs[1].angle, 375.0 * kPi / 180.0, 1e-14);
+  EXPECT_EQ(st.legs[2].type, ShipLeg::Type::Heading);
+  EXPECT_EQ(st.legs[2].heading, 0.0);
+  EXPECT_NEAR(st.legs[4].angle, -kPi / 2, 1e-15);
+  // Defaults: heading 0, no legs (straight on).
+  const Problem q = loadProblemFromString(minimalWith("dynamics: {top_motion: {type: ship_track, speed: 2}}\n"));
+  EXPECT_EQ(q.dynamics.top_motion.ship_track.heading, 0.0);
+  EXPECT_TRUE(q.dynamics.top_motion.ship_track.legs.empty());
+}
+
+TEST(ProblemIo, DocumentedShipTrackExampleLoads) {
+  std::ifstream f(std::string(MD_SOURCE_DIR) + "/docs/problem_format.md");
+  ASSERT_TRUE(f.good());
+  const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const auto sec = doc.find("#### Ship tracks");
+  ASSERT_NE(sec, std::string::npos);
+  const auto b = doc.find("```yaml\n", sec);
+  ASSERT_NE(b, std::string::npos);
+  const auto e = doc.find("```", b + 8);
+  ASSERT_NE(e, std::string::npos);
+  Problem p;
+  ASSERT_NO_THROW(p = loadProblemFromString(minimalWith(doc.substr(b + 8, e - b - 8))));
+  const ShipTrack& st = p.dynamics.top_motion.ship_track;
+  ASSERT_EQ(st.legs.size(), 4u);
+  // 200 s + the 375 deg turn (440 s, as the paper says) + 300 s = the example's duration.
+  EXPECT_NEAR(st.legsDuration(), p.dynamics.duration, 0.1);
+}
+
+TEST(ProblemIo, DynamicsShipTrackErrors) {
+  auto with = [](const std::string& motion) { return minimalWith("dynamics: {top_motion: " + motion + "}\n"); };
+  EXPECT_ERROR_HAS(with("{type: ship_track}"), "dynamics.top_motion.speed", "required key missing");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 0}"), "dynamics.top_motion.speed = 0", "must be > 0", "(line 8)");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 1, legs: [{straight: -3}]}"),
+                   "dynamics.top_motion.legs[0].straight = -3", "must be >= 0");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 1, legs: [{straight: 1}, {turn: {radius: -640, angle_deg: 90}}]}"),
+                   "dynamics.top_motion.legs[1].turn.radius = -640", "must be > 0");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 1, legs: [{turn: {radius: 640}}]}"),
+                   "dynamics.top_motion.legs[0].turn.angle_deg", "required key missing");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 1, legs: [{turn: {radius: 640, angle: 90}}]}"),
+                   "dynamics.top_motion.legs[0].turn.angle", "unknown key", "angle_deg");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 1, legs: [{straight: 10, heading_deg: 5}]}"),
+                   "dynamics.top_motion.legs[0]: has straight, heading_deg at once", "exactly one of");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 1, legs: [{}]}"), "dynamics.top_motion.legs[0]: no leg given");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 1, legs: [straight]}"), "dynamics.top_motion.legs[0]",
+                   "a map");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 1, legs: [{heading_deg: .nan}]}"),
+                   "dynamics.top_motion.legs[0].heading_deg", "finite");
+  EXPECT_ERROR_HAS(with("{type: ship_track, speed: 1, period: 5}"), "dynamics.top_motion.period",
+                   "only used with type: sinusoid");
+  EXPECT_ERROR_HAS(with("{type: hold, speed: 1}"), "dynamics.top_motion.speed = 1", "only used with type: ship_track");
+  EXPECT_ERROR_HAS(with("{type: sinusoid, period: 5, legs: []}"), "dynamics.top_motion.legs",
+                   "only used with type: ship_track");
 }
 
 TEST(ProblemIo, DynamicsTopMotionErrors) {

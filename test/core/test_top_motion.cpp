@@ -176,6 +176,30 @@ TEST(TopMotion, WaveFollowerHeavesWithTheSurfaceAtTheTop) {
   EXPECT_EQ(makeTopMotion(m, kX0, kY0, kZ0, &none)(3.0).z, kZ0);
 }
 
+TEST(TopMotion, ShipTrackMovesTheTopAtItsStaticElevation) {
+  TopMotion m;
+  m.type = TopMotion::Type::ShipTrack;
+  m.ship_track.speed = 2.0;
+  m.ship_track.heading = kPi / 2;
+  m.ship_track.legs = {ShipLeg::straight(10.0), ShipLeg::turn(50.0, -kPi / 2)};
+  const auto f = makeTopMotion(m, kX0, kY0, kZ0, nullptr);
+  for (double t : {0.0, 5.0, 20.0, 100.0}) {
+    const TopState s = f(t);
+    const ShipPose p = m.ship_track.at(t, kX0, kY0);
+    EXPECT_FALSE(s.force);
+    EXPECT_EQ(s.x, p.x);
+    EXPECT_EQ(s.y, p.y);
+    EXPECT_EQ(s.z, kZ0);
+    EXPECT_EQ(s.vx, p.vx);
+    EXPECT_EQ(s.vy, p.vy);
+    EXPECT_EQ(s.vz, 0.0);
+    EXPECT_EQ(s.heading, p.heading);
+  }
+  EXPECT_NEAR(f(5.0).y, kY0 + 10.0, kExact);  // north at 2 m/s
+  EXPECT_NEAR(f(100.0).heading, 0.0, 1e-15);   // after the starboard quarter turn: east
+  expectVelocityIsDerivative(f, {3.0, 20.0, 60.0});
+}
+
 TEST(TopMotion, PlanarCheckNamesTheOutOfPlaneValue) {
   TopMotion m;
   EXPECT_EQ(planarTopMotionError(m), "");
@@ -192,6 +216,16 @@ TEST(TopMotion, PlanarCheckNamesTheOutOfPlaneValue) {
   EXPECT_EQ(planarTopMotionError(m), "");  // y = 0 in every row
   m.table.push_back({2.0, 1.0, -0.5, 2.0});
   EXPECT_TRUE(contains(planarTopMotionError(m), "dynamics.top_motion.table[2] y = -0.5"));
+  EXPECT_TRUE(contains(planarTopMotionError(m), "needs the 3-D model"));
+  // A ship track stays in the plane only straight along +-x.
+  m = TopMotion{};
+  m.type = TopMotion::Type::ShipTrack;
+  m.ship_track.speed = 1.0;
+  m.ship_track.heading = kPi;
+  m.ship_track.legs = {ShipLeg::straight(10.0)};
+  EXPECT_EQ(planarTopMotionError(m), "");
+  m.ship_track.legs.push_back(ShipLeg::turn(100.0, kPi));
+  EXPECT_TRUE(contains(planarTopMotionError(m), "dynamics.top_motion.legs[1].turn.angle_deg = 180"));
   EXPECT_TRUE(contains(planarTopMotionError(m), "needs the 3-D model"));
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mooring_dynamics/core/ship_track.hpp"
 #include "mooring_dynamics/core/time_integration.hpp"
 
 namespace mooring_dynamics {
@@ -21,7 +22,8 @@ struct TopMotion {
     PositionTable,  ///< rows (t [s], x, y, z [m]): absolute positions, linear in between
     VelocityTable,  ///< rows (t [s], vx, vy, vz [m/s]): linear in between, integrated from the static top
     ForceTable,     ///< rows (t [s], fx, fy, fz [N]): force applied to the line's top end
-    WaveFollower    ///< the top follows the wave surface vertically (heave), horizontal position held
+    WaveFollower,   ///< the top follows the wave surface vertically (heave), horizontal position held
+    ShipTrack       ///< tow point on a ship track (`ship_track`), elevation held at the static top
   };
   Type type = Type::Hold;
   double amplitude_x = 0.0;  ///< Sinusoid [m]
@@ -39,6 +41,7 @@ struct TopMotion {
     Row(double t_, double x_, double y_, double z_) : t(t_), x(x_), y(y_), z(z_) {}
   };
   std::vector<Row> table;    ///< tables, t strictly increasing; held constant after the last row
+  ShipTrack ship_track;      ///< ShipTrack: speed, initial heading and legs, started at the static top
 
   /// Velocity BCs (paper eq. 34, default) or positions prescribed directly in the Newton system.
   bool prescribe_position = false;

@@ -31,13 +31,15 @@ struct TopState {
 ///                   (x0, y0, z0) at t = 0;
 ///   force_table     force = true, (fx, fy, fz) from the rows, linear in time; position unused;
 ///   wave_follower   (x0, y0, z0 + eta(x0, y0, t)), velocity (0, 0, d eta / dt); held when
-///                   `waves` is null or empty.
+///                   `waves` is null or empty;
+///   ship_track      ShipTrack::at(t, x0, y0) at the constant elevation z0, with its heading.
 /// The function holds a copy of `m` and the pointer `waves`, which must outlive it.
 std::function<TopState(double t)> makeTopMotion(const TopMotion& m, double x0, double y0, double z0,
                                                 const WaveField* waves);
 
 /// Empty when the top motion stays in the vertical plane y = 0 (what the 2-D solver can follow),
-/// else "dynamics.top_motion.<key> = value: ... needs the 3-D model".
+/// else "dynamics.top_motion.<key> = value: ... needs the 3-D model". A ship track stays in it
+/// only without turns and with headings of 0 or 180 deg (ShipTrack::leavesXAxis).
 std::string planarTopMotionError(const TopMotion& m);
 
 /// Empty unless `m` is a position table whose first row is farther than `tolerance` [m] from the
