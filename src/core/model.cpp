@@ -345,8 +345,16 @@ std::string Problem::validate() const {
     }
   }
   if (!(e = check(finite(anchor_x), "anchor.x", anchor_x, "must be finite")).empty()) return e;
+  if (!(e = check(finite(anchor_y), "anchor.y", anchor_y, "must be finite")).empty()) return e;
   if (!(e = check(finite(anchor_z) && anchor_z <= 0.0, "anchor.z", anchor_z, "must be <= 0 (z = 0 is the sea surface)")).empty()) return e;
-  const double zb = env.seabedElevation(anchor_x);
+  if (formulation == Formulation::TwoD) {
+    // The 2-D equations live in the vertical plane y = 0.
+    constexpr const char* kPlanar = "must be 0 with model: 2d (the 2-D line lies in the plane y = 0); use model: 3d";
+    if (!(e = check(anchor_y == 0.0, "anchor.y", anchor_y, kPlanar)).empty()) return e;
+    if (top.type == TopBoundary::Type::Position && !(e = check(top.y == 0.0, "top.position.y", top.y, kPlanar)).empty()) return e;
+    if (top.type == TopBoundary::Type::Force && !(e = check(top.fy == 0.0, "top.force.y", top.fy, kPlanar)).empty()) return e;
+  }
+  const double zb = env.seabedElevation(anchor_x, anchor_y);
   if (!(e = check(anchor_z >= zb - 1e-6 * env.depth, "anchor.z", anchor_z,
                   "is below the seabed elevation " + fmt(zb) + " m at anchor.x")).empty()) return e;
 
@@ -354,16 +362,21 @@ std::string Problem::validate() const {
     case TopBoundary::Type::Force:
       if (!(e = check(finite(top.fx), "top.force.x", top.fx, "must be finite")).empty()) return e;
       if (!(e = check(finite(top.fz), "top.force.z", top.fz, "must be finite")).empty()) return e;
+      if (!(e = check(finite(top.fy), "top.force.y", top.fy, "must be finite")).empty()) return e;
       break;
     case TopBoundary::Type::Position: {
       if (!(e = check(finite(top.x), "top.position.x", top.x, "must be finite")).empty()) return e;
       if (!(e = check(finite(top.z), "top.position.z", top.z, "must be finite")).empty()) return e;
+      if (!(e = check(finite(top.y), "top.position.y", top.y, "must be finite")).empty()) return e;
       double reach = 0.0;
       for (const auto& s : segments) reach += s.length * (1.0 + materials[s.material].max_strain);
-      const double dx = top.x - anchor_x, dz = top.z - anchor_z;
-      const double dist = std::hypot(dx, dz);
+      const double dx = top.x - anchor_x, dy = top.y - anchor_y, dz = top.z - anchor_z;
+      const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
       if (!(dist < reach)) {
-        return "top.position = (" + fmt(top.x) + ", " + fmt(top.z) + "): " + fmt(dist) +
+        const std::string at = formulation == Formulation::TwoD
+                                   ? fmt(top.x) + ", " + fmt(top.z)
+                                   : fmt(top.x) + ", " + fmt(top.y) + ", " + fmt(top.z);
+        return "top.position = (" + at + "): " + fmt(dist) +
                " m from the anchor, farther than the stretched line can reach (" + fmt(reach) +
                " m: unstretched length " + fmt(totalLength()) + " m at each material's max_strain)";
       }

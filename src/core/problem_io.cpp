@@ -206,14 +206,16 @@ void readTop(const Item& it, TopBoundary& top) {
                                       : "has " + joinList(given) + " at once") +
                        "; give exactly one of position, force, buoy" + lineSuffix(it.mark));
   if (m.has("position")) {
-    const Map p(m.at("position"), {"x", "z"});
+    const Map p(m.at("position"), {"x", "y", "z"});
     top.type = TopBoundary::Type::Position;
     top.x = p.number("x");
+    top.y = p.number("y", 0.0, Range::Any);
     top.z = p.number("z");
   } else if (m.has("force")) {
-    const Map f(m.at("force"), {"x", "z"});
+    const Map f(m.at("force"), {"x", "y", "z"});
     top.type = TopBoundary::Type::Force;
     top.fx = f.number("x");
+    top.fy = f.number("y", 0.0, Range::Any);
     top.fz = f.number("z");
   } else {
     const Map b(m.at("buoy"),
@@ -365,10 +367,20 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   if (!root.IsMap())
     throw ProblemError("top level: expected a map with keys materials, line, top, ..., found " + typeName(root) +
                        lineSuffix(rit.mark));
-  const Map top(rit, {"name", "environment", "materials", "bodies", "line", "anchor", "top", "solver",
+  const Map top(rit, {"name", "model", "environment", "materials", "bodies", "line", "anchor", "top", "solver",
                       "dynamics"});
   Problem pb;
   if (top.has("name")) pb.name = readString(top.at("name"));
+  if (top.has("model")) {
+    const Item mi = top.at("model");
+    const std::string v = readString(mi);
+    if (v == "2d")
+      pb.formulation = Formulation::TwoD;
+    else if (v == "3d")
+      pb.formulation = Formulation::ThreeD;
+    else
+      throw ProblemError("model = " + quoted(v) + ": unknown model (known: 2d, 3d)" + lineSuffix(mi.mark));
+  }
   if (presentAndNotNull(top, "environment")) readEnvironment(top.at("environment"), pb.environment, base_dir);
 
   // Materials, in file order.
@@ -416,20 +428,21 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   pb.anchor_x = 0.0;
   bool anchor_z_given = false;
   if (presentAndNotNull(top, "anchor")) {
-    const Map a(top.at("anchor"), {"x", "z"});
+    const Map a(top.at("anchor"), {"x", "y", "z"});
     pb.anchor_x = a.number("x", 0.0, Range::Any);
+    pb.anchor_y = a.number("y", 0.0, Range::Any);
     if (a.has("z")) {
       anchor_z_given = true;
       const Item zi = a.at("z");
       pb.anchor_z = readNumber(zi);
       if (pb.anchor_z > 0.0) zi.fail("must be <= 0 (z = 0 is the mean sea surface, z up)");
-      const double bottom = pb.environment.seabedElevation(pb.anchor_x);
+      const double bottom = pb.environment.seabedElevation(pb.anchor_x, pb.anchor_y);
       if (pb.anchor_z < bottom - 1e-9 * std::max(1.0, std::fabs(bottom)))
         zi.fail("below the seabed (seabed at z = " + formatNumber(bottom) + " m at x = " +
                 formatNumber(pb.anchor_x) + " m)");
     }
   }
-  if (!anchor_z_given) pb.anchor_z = pb.environment.seabedElevation(pb.anchor_x);
+  if (!anchor_z_given) pb.anchor_z = pb.environment.seabedElevation(pb.anchor_x, pb.anchor_y);
 
   readTop(top.required("top"), pb.top);
   if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), pb.static_options);

@@ -305,11 +305,23 @@ TEST(ProblemIo, UnknownKeys) {
   EXPECT_ERROR_HAS(mutate("- {body: float}", "- {body: float, at: 3}"), "line[2].at", "unknown key");
   EXPECT_ERROR_HAS(mutate("tolerance: 1e-8", "tol: 1e-8"), "solver.static.tol", "unknown key");
   EXPECT_ERROR_HAS(mutate("static:", "statics:"), "solver.statics", "unknown key");
-  EXPECT_ERROR_HAS(mutate("anchor: {x: -1.5}", "anchor: {x: -1.5, y: 0}"), "anchor.y", "unknown key");
+  EXPECT_ERROR_HAS(mutate("anchor: {x: -1.5}", "anchor: {x: -1.5, w: 0}"), "anchor.w", "unknown key");
   EXPECT_ERROR_HAS(mutate("name: test mooring", "nmae: test mooring"), "nmae", "unknown key",
                    "did you mean \"name\"");
   EXPECT_ERROR_HAS(mutate("water_density: 1025", "water_density: 1025\n  water_density: 1000"),
                    "environment.water_density", "duplicate");
+}
+
+TEST(ProblemIo, ModelKeyAndOutOfPlaneGeometry) {
+  // y coordinates are 3-D geometry: the 2-D model (the default) names the key and the way out.
+  EXPECT_ERROR_HAS(mutate("anchor: {x: -1.5}", "anchor: {x: -1.5, y: 2}"), "anchor.y = 2", "model: 3d");
+  EXPECT_ERROR_HAS(mutate("name: test mooring", "name: test mooring\nmodel: 4d"), "model = \"4d\"", "2d, 3d");
+  const Problem p = loadProblemFromString(
+      mutate("name: test mooring", "name: test mooring\nmodel: 3d"));
+  EXPECT_EQ(p.formulation, Formulation::ThreeD);
+  const Problem q = loadProblemFromString(mutate("anchor: {x: -1.5}", "anchor: {x: -1.5, y: 2}")
+                                              .insert(0, "model: 3d\n"));
+  EXPECT_DOUBLE_EQ(q.anchor_y, 2.0);
 }
 
 TEST(ProblemIo, TablesMustIncrease) {

@@ -166,7 +166,9 @@ struct TopBoundary {
   enum class Type { Force, Position, Buoy };
   Type type = Type::Position;
   double fx = 0.0, fz = 0.0;   ///< Force: force applied to the line's top end by the platform [N]
+  double fy = 0.0;             ///< Force, y component [N] (3-D model only; 0 in 2-D)
   double x = 0.0, z = 0.0;     ///< Position: top end position in the problem frame [m]
+  double y = 0.0;              ///< Position, y component [m] (3-D model only; 0 in 2-D)
   SurfaceBuoy buoy;            ///< Buoy: the buoy that floats at the top
 };
 
@@ -188,14 +190,21 @@ struct StaticOptions {
   std::string validate() const;
 };
 
+/// Which equations solve the problem: the 2-D equations of the paper (eqs. 1-6, the line in the
+/// vertical x-z plane, N = 6) or the 3-D equations (DESIGN.md section 3, N = 13 with Euler
+/// parameters; any geometry). Problem file key `model: 2d | 3d`.
+enum class Formulation { TwoD, ThreeD };
+
 /// A complete single-line problem.
 struct Problem {
   std::string name;
+  Formulation formulation = Formulation::TwoD;
   Environment environment;
   std::vector<Material> materials;
   std::vector<Body> bodies;
   std::vector<Segment> segments;  ///< anchor to top
   double anchor_x = 0.0;          ///< anchor position [m]
+  double anchor_y = 0.0;          ///< [m] (3-D model only; 0 in 2-D)
   double anchor_z = -100.0;       ///< [m]
   TopBoundary top;
   StaticOptions static_options;

@@ -28,14 +28,23 @@ struct NodeState {
   double curvature = 0.0; ///< Omega3 = dphi/ds [1/m]
   double strain = 0.0;    ///< eps [-]
   int segment = 0;        ///< index of the segment the node belongs to
+  // 3-D model (zero from the 2-D solver). There `angle` is the inclination of the tangent from
+  // the vertical (>= 0), `shear` the shear force along e2 and `curvature` Omega3.
+  double y = 0.0;         ///< [m]
+  double shear_b = 0.0;   ///< shear force S3 along e3 [N]
+  double curvature_b = 0.0;  ///< Omega2, curvature about e2 [1/m]
+  double twist = 0.0;     ///< Omega1, twist about the tangent [1/m]
+  double azimuth = 0.0;   ///< direction of the tangent's horizontal part, ccw from +x [rad]
 };
 
 struct StaticResult {
   std::vector<NodeState> nodes;  ///< anchor (first) to top (last)
   double top_force_x = 0.0;      ///< force the line's top end receives from the platform/buoy [N]
   double top_force_z = 0.0;      ///< [N]
+  double top_force_y = 0.0;      ///< [N] (3-D model)
   double anchor_force_x = 0.0;   ///< force the line exerts on the anchor [N]
   double anchor_force_z = 0.0;   ///< [N]
+  double anchor_force_y = 0.0;   ///< [N] (3-D model)
   double buoy_draft = 0.0;       ///< surface buoy draft [m] (buoy top boundary only)
   SolverSummary summary;
 
