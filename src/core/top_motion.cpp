@@ -21,8 +21,11 @@ std::string fmt(double v) {
 /// Table components at time t, linear between rows and held outside; `rate` (when given) gets the
 /// slope of the current interval (0 outside the table).
 void sampleTable(const std::vector<TopMotion::Row>& tab, double t, double v[3], double* rate) {
+  // The interval (t_i, t_i+1] that contains t: at a row time the interval ending there, whose
+  // slope is the velocity a time step arriving at that row followed (a step of the solver lands
+  // on row times whenever the rows share its grid).
   std::size_t i = 0;
-  while (i + 1 < tab.size() && tab[i + 1].t <= t) ++i;
+  while (i + 1 < tab.size() && tab[i + 1].t < t) ++i;
   const TopMotion::Row& r0 = tab[i];
   v[0] = r0.x;
   v[1] = r0.y;
@@ -35,10 +38,10 @@ void sampleTable(const std::vector<TopMotion::Row>& tab, double t, double v[3], 
     const double d[3] = {r1.x - r0.x, r1.y - r0.y, r1.z - r0.z};
     for (int k = 0; k < 3; ++k) {
       if (rate) rate[k] = d[k] / span;
-      v[k] += w * d[k];
+      v[k] = w == 1.0 ? (k == 0 ? r1.x : k == 1 ? r1.y : r1.z) : v[k] + w * d[k];
     }
   }
-  // Before the first row (t < tab.front().t) i = 0 and the first row's values are held.
+  // Before the first row (t <= tab.front().t) and after the last the end rows are held, at rest.
 }
 
 TopState held(double x0, double y0, double z0) {

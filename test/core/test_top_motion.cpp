@@ -94,8 +94,20 @@ TEST(TopMotion, PositionTableIn3DAndInThePlane) {
   EXPECT_NEAR(a.vx, 2.0, kExact);  // slope of the interval
   EXPECT_NEAR(a.vy, -1.0, kExact);
   EXPECT_NEAR(a.vz, 0.5, kExact);
+  // At a row time: the row's position and the slope of the interval that ends there (a solver
+  // step landing on the row followed that interval; a zero velocity there froze a top whose
+  // rows share the solver's time grid).
+  const TopState at3 = f(3.0), at4 = f(4.0);
+  EXPECT_EQ(at3.x, 104.0);
+  EXPECT_EQ(at3.z, -2.0);
+  EXPECT_NEAR(at3.vx, 2.0, kExact);
+  EXPECT_NEAR(at3.vy, -1.0, kExact);
+  EXPECT_NEAR(at3.vz, 0.5, kExact);
+  EXPECT_EQ(at4.z, -5.0);
+  EXPECT_NEAR(at4.vx, 0.0, kExact);
+  EXPECT_NEAR(at4.vz, -3.0, kExact);
   // Held before the first and after the last row, at rest.
-  for (double t : {0.0, 0.5, 4.0, 100.0}) {
+  for (double t : {0.0, 0.5, 4.000001, 100.0}) {
     const TopState s = f(t);
     const TopMotion::Row& r = t < 1.0 ? m.table.front() : m.table.back();
     EXPECT_EQ(s.x, r.x) << t;

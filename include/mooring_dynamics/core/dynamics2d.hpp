@@ -79,9 +79,11 @@ struct DynamicSeries {
   std::vector<double> top_tension;              ///< [N]
   std::vector<double> anchor_tension;           ///< [N]
   std::vector<double> top_x, top_z;             ///< [m]
+  std::vector<double> top_y;                    ///< [m] (0 in 2-D)
   std::vector<double> record_s;                 ///< recorded node arclengths [m] (nearest nodes)
   std::vector<std::vector<double>> node_tension;///< [record][sample] [N]
   std::vector<std::vector<double>> node_x, node_z;  ///< [record][sample] [m]
+  std::vector<std::vector<double>> node_y;          ///< [record][sample] [m] (3-D runs; 0 in 2-D)
   std::vector<StaticResult> snapshots;          ///< full line at snapshot times
   std::vector<double> snapshot_t;               ///< [s]
   StaticResult initial_static;

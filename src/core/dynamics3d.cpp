@@ -1,0 +1,375 @@
+#include "mooring_dynamics/core/dynamics3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "mooring_dynamics/core/adaptive_mesh.hpp"
+#include "mooring_dynamics/core/dynamic_run.hpp"
+#include "mooring_dynamics/core/equations3d.hpp"
+#include "mooring_dynamics/core/mesh.hpp"
+#include "mooring_dynamics/core/newton.hpp"
+#include "mooring_dynamics/core/statics3d.hpp"
+#include "mooring_dynamics/core/waves.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+using namespace eq3d;
+
+namespace {
+using AD32 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
+using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
+constexpr int kAnchorRows = 10;
+constexpr int kTopRows = 6;
+const char* const kVarNames[N] = {"eps", "S2", "S3", "u1", "u2", "u3", "Omega1", "Omega2",
+                                  "Omega3", "q0", "q1", "q2", "q3", "x", "y", "z"};
+
+template <class AD>
+void scatter(const AD* r, int rows, int row0, int col0, int cols, Eigen::VectorXd& R, BandedMatrix* J) {
+  for (int q = 0; q < rows; ++q) {
+    R[row0 + q] = r[q].value();
+    if (!J || r[q].derivatives().size() == 0) continue;
+    for (int k = 0; k < cols; ++k) {
+      const double d = r[q].derivatives()[k];
+      if (d != 0.0) J->at(row0 + q, col0 + k) = d;
+    }
+  }
+}
+
+template <class AD>
+AD constant(double v) {
+  AD a(v);
+  a.derivatives().setZero();
+  return a;
+}
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------
+
+struct DynamicSolver3D::Impl {
+  Problem problem;
+  Mesh mesh;
+  WaveField waves;
+  GeneralizedAlpha ga;
+  DynamicOptions opt;
+  std::function<TopState(double)> top;
+  StaticResult statics;
+
+  double t = 0.0;
+  Eigen::VectorXd Y, Yd;        ///< accepted state and rate at time t
+  std::vector<Water> water;     ///< water velocity at each node at time t
+  Eigen::VectorXd S;            ///< spatial rows 0-5 of each interval at time t
+  double chi[N];
+  Totals totals;
+
+  int nodes() const { return static_cast<int>(mesh.nodes.size()); }
+  const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
+
+  Water waterAt(double x, double y, double z, double time) const {
+    Water w;
+    const Environment& env = problem.environment;
+    env.currentAt(z, w.w[0], w.w[1]);
+    env.currentGradientAt(z, w.dw_dz[0], w.dw_dz[1]);
+    w.z = z;
+    if (!waves.empty() && z <= 0.0) {
+      double vx, vy, vz;
+      waves.velocity(x, y, z, time, vx, vy, vz);
+      w.w[0] += vx;
+      w.w[1] += vy;
+      w.w[2] += vz;
+    }
+    return w;
+  }
+
+  void waterField(const Eigen::VectorXd& y, double time, std::vector<Water>& out) const {
+    out.resize(static_cast<std::size_t>(nodes()));
+    for (int j = 0; j < nodes(); ++j)
+      out[static_cast<std::size_t>(j)] = waterAt(y[N * j + X], y[N * j + eq3d::Y], y[N * j + Z], time);
+  }
+
+  /// Rows 0-5 of the spatial part of every interval at state y (double): the rows that eq. 30
+  /// weights between the time levels.
+  void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out) const {
+    const int n = nodes();
+    out.setZero(kInertiaRows * (n - 1));
+    for (int j = 0; j + 1 < n; ++j) {
+      const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
+      const double* ya = y.data() + N * j;
+      double r[N];
+      if (iv.h > 0.0)
+        intervalSpatial(problem.environment, problem.materials[iv.material], iv.h, ya, ya + N,
+                        w[static_cast<std::size_t>(j)], w[static_cast<std::size_t>(j) + 1], r);
+      else
+        junctionForces(problem, iv, mat(j), mat(j + 1), ya, ya + N, w[static_cast<std::size_t>(j)], r);
+      const int rows = iv.h > 0.0 ? kInertiaRows : 3;
+      for (int q = 0; q < rows; ++q) out[kInertiaRows * j + q] = r[q];
+    }
+  }
+};
+
+// --- One time step as a Newton system ------------------------------------------------------------
+//
+// Row layout as in statics (10 anchor rows, 16 per interval, 6 top rows): kl = 25, ku = 21.
+
+class DynamicStepSystem3D : public NewtonSystem {
+ public:
+  DynamicStepSystem3D(const DynamicSolver3D::Impl& im, double t_new, double dt, const TopState& top)
+      : im_(im), t_(t_new), dt_(dt), top_(top) {}
+
+  int size() const override { return N * im_.nodes(); }
+  int lowerBandwidth() const override { return 25; }
+  int upperBandwidth() const override { return 21; }
+  double scale(int i) const override { return im_.chi[i % N]; }
+  std::string describe(int i) const override {
+    const std::size_t j = static_cast<std::size_t>(i / N);
+    std::ostringstream os;
+    os << "node " << j << " (s = " << im_.mesh.nodes[j].s << " m) " << kVarNames[i % N];
+    return os.str();
+  }
+  double stepLimit(const Eigen::VectorXd& dY) const override {
+    constexpr double kMaxQuaternionStep = 0.25;  // about half a radian, as in statics
+    double largest = 0.0;
+    for (Eigen::Index i = 0; i + N <= dY.size(); i += N) largest = std::max(largest, dY.segment<4>(i + Q0).norm());
+    return largest > kMaxQuaternionStep ? kMaxQuaternionStep / largest : 1.0;
+  }
+  void conditionStep(const Eigen::VectorXd& Yv, Eigen::VectorXd& dY) const override {
+    const Environment& env = im_.problem.environment;
+    for (int j = 0; j < im_.nodes(); ++j) {
+      const Eigen::Index i = N * j;
+      const double w = std::max(im_.mat(j).wet_weight, 0.0);
+      const double zb = env.seabedElevation(Yv[i + X], Yv[i + eq3d::Y]);
+      const double rest = zb - 1.5 * w / env.seabed.stiffness;
+      if (Yv[i + Z] >= zb && Yv[i + Z] + dY[i + Z] < rest) dY[i + Z] = rest - Yv[i + Z];
+    }
+  }
+
+  void evaluate(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) override {
+    const int n = im_.nodes();
+    const GeneralizedAlpha& ga = im_.ga;
+    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
+    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
+    const Environment& env = im_.problem.environment;
+    R.resize(size());
+    im_.waterField(Yv, t_, water_);
+    const Eigen::VectorXd& Yp = im_.Y;
+    const Eigen::VectorXd& Ydp = im_.Yd;
+
+    // Anchor (eq. 34 in 3-D): at rest, fixed, bending-moment free, unit frame, twist held.
+    {
+      AD16 y[N], r[kAnchorRows];
+      for (int k = 0; k < N; ++k) y[k] = AD16(Yv[k], N, k);
+      const double qp[4] = {Yp[Q0], Yp[Q1], Yp[Q2], Yp[Q3]};
+      r[0] = y[U1];
+      r[1] = y[U2];
+      r[2] = y[U3];
+      r[3] = y[X] - im_.problem.anchor_x;
+      r[4] = y[eq3d::Y] - im_.problem.anchor_y;
+      r[5] = y[Z] - im_.problem.anchor_z;
+      r[6] = y[O2];
+      r[7] = y[O3];
+      r[8] = normDefect(y);
+      r[9] = twistGauge(qp, y);
+      scatter(r, kAnchorRows, 0, 0, N, R, J);
+    }
+
+    for (int j = 0; j + 1 < n; ++j) {
+      const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
+      const int row = kAnchorRows + N * j;
+      AD32 y[2 * N], ydw[2 * N], yp[2 * N];
+      for (int k = 0; k < 2 * N; ++k) {
+        const int idx = N * j + k;
+        y[k] = AD32(Yv[idx], 2 * N, k);
+        const AD32 yd = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
+        ydw[k] = (1.0 - am) * yd + am * Ydp[idx];  // weighted rate of eq. 30
+        yp[k] = constant<AD32>(Yp[idx]);
+      }
+      const Water& wa = water_[static_cast<std::size_t>(j)];
+      const Water& wb = water_[static_cast<std::size_t>(j) + 1];
+      const Water& wpa = im_.water[static_cast<std::size_t>(j)];
+      const Water& wpb = im_.water[static_cast<std::size_t>(j) + 1];
+      AD32 r[N], in1[kInertiaRows], in0[kInertiaRows];
+      int weighted;
+      if (iv.h > 0.0) {
+        const Material& m = im_.problem.materials[iv.material];
+        intervalSpatial(env, m, iv.h, y, y + N, wa, wb, r);
+        // Mass matrix at both levels averaged by alpha_k (docs/method.md: not eq. 31's alpha_m).
+        intervalInertia(env, m, iv.h, y, y + N, ydw, ydw + N, wa, wb, in1);
+        intervalInertia(env, m, iv.h, yp, yp + N, ydw, ydw + N, wpa, wpb, in0);
+        weighted = kInertiaRows;
+      } else {
+        junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, r);
+        junctionConstraints(im_.mat(j), im_.mat(j + 1), y, y + N, r);
+        junctionInertia(im_.problem, iv, y, ydw, in1);
+        junctionInertia(im_.problem, iv, yp, ydw, in0);
+        weighted = 3;
+      }
+      for (int q = 0; q < weighted; ++q)
+        r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S[kInertiaRows * j + q]);
+      scatter(r, N, row, N * j, 2 * N, R, J);
+    }
+
+    // Top: moment free, plus prescribed velocity (eq. 34), velocity with position feedback, or force.
+    const int top = N * (n - 1);
+    AD16 y[N], r[kTopRows];
+    for (int k = 0; k < N; ++k) y[k] = AD16(Yv[top + k], N, k);
+    r[0] = y[O1];
+    r[1] = y[O2];
+    r[2] = y[O3];
+    if (top_.force) {
+      AD16 F[3];
+      internalForce(im_.mat(n - 1), y, F);
+      r[3] = F[0] - top_.fx;
+      r[4] = F[1] - top_.fy;
+      r[5] = F[2] - top_.fz;
+    } else {
+      AD16 V[3];
+      globalVelocity(y, V);
+      const double v[3] = {top_.vx, top_.vy, top_.vz};
+      const double x[3] = {top_.x, top_.y, top_.z};
+      // Position feedback over a few base steps, as in 2-D (docs/method.md, "Top boundary").
+      constexpr double kPositionFeedbackSteps = 5.0;
+      const double kappa =
+          im_.opt.top_motion.prescribe_position ? 1.0 / (kPositionFeedbackSteps * im_.opt.dt) : 0.0;
+      for (int i = 0; i < 3; ++i) r[3 + i] = V[i] - v[i] - kappa * (x[i] - y[X + i]);
+    }
+    scatter(r, kTopRows, kAnchorRows + N * (n - 1), top, N, R, J);
+  }
+
+  const std::vector<Water>& water() const { return water_; }
+
+ private:
+  const DynamicSolver3D::Impl& im_;
+  double t_, dt_;
+  TopState top_;
+  mutable std::vector<Water> water_;
+};
+
+// ------------------------------------------------------------------------------------------------
+
+DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  const std::string err = problem.validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  im.problem = problem;
+  im.opt = problem.dynamics;
+  im.ga = problem.dynamics.scheme;
+  im.mesh = buildMesh(problem);
+  StaticState3D st = solveStatic3DOnMesh(problem, im.mesh, problem.static_options);
+  if (st.result.summary.converged && problem.dynamics.adaptive_mesh) {
+    // Section 3: redistribute the nodes by eq. 22. The curvature fed to eq. 21 is the magnitude
+    // of the bending curvature (Omega2, Omega3) with the sign of Omega3, which is the 2-D
+    // Omega3 for a planar line.
+    StaticResult shape = st.result;
+    for (auto& ns : shape.nodes)
+      ns.curvature = std::copysign(std::hypot(ns.curvature, ns.curvature_b), ns.curvature);
+    im.mesh = buildAdaptiveMesh(problem, im.mesh, shape, problem.dynamics.mesh_weight);
+    st = solveStatic3DOnMesh(problem, im.mesh, problem.static_options);
+  }
+  if (!st.result.summary.converged)
+    throw std::runtime_error("the 3-D static solution that starts the dynamic run did not converge: " +
+                             st.result.summary.message);
+  im.statics = st.result;
+  if (problem.environment.waves.type != WaveSpec::Type::None)
+    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+
+  const NodeState& topNode = im.statics.nodes.back();
+  const TopMotion& tm = problem.dynamics.top_motion;
+  constexpr double kStartMismatch = 0.01;  // [m] a position table must start where statics put the top
+  const std::string bad = topMotionStartError(tm, topNode.x, topNode.y, topNode.z, kStartMismatch);
+  if (!bad.empty()) throw std::invalid_argument(bad);
+  im.top = makeTopMotion(tm, topNode.x, topNode.y, topNode.z, &im.waves);
+
+  im.t = 0.0;
+  im.Y = st.Y;
+  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
+  im.waterField(im.Y, 0.0, im.water);
+  im.spatialRows(im.Y, im.water, im.S);
+
+  // Error scales chi_m of eq. 39, as in 2-D.
+  double Tc = 1.0, stiffest = 0.0;
+  for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
+  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
+  im.chi[EPS] = Tc / stiffest;
+  im.chi[S2] = im.chi[S3] = Tc;
+  im.chi[U1] = im.chi[U2] = im.chi[U3] = 1.0;  // [m/s]
+  im.chi[O1] = im.chi[O2] = im.chi[O3] = 1.0 / std::max(im.mesh.minSpacing(), 1e-3);
+  im.chi[Q0] = im.chi[Q1] = im.chi[Q2] = im.chi[Q3] = 1.0;
+  im.chi[X] = im.chi[eq3d::Y] = im.chi[Z] = 1.0;  // [m]
+}
+
+DynamicSolver3D::~DynamicSolver3D() = default;
+
+void DynamicSolver3D::setTopInput(std::function<TopState(double)> source) { impl_->top = std::move(source); }
+double DynamicSolver3D::time() const { return impl_->t; }
+const StaticResult& DynamicSolver3D::initialStatic() const { return impl_->statics; }
+DynamicSolver3D::Totals DynamicSolver3D::totals() const { return impl_->totals; }
+
+std::vector<double> DynamicSolver3D::nodeArclengths() const {
+  std::vector<double> s;
+  for (const auto& n : impl_->mesh.nodes) s.push_back(n.s);
+  return s;
+}
+
+StaticResult DynamicSolver3D::snapshot() const {
+  StaticResult r = staticResult3DFromState(impl_->problem, impl_->mesh, impl_->Y);
+  r.summary.converged = true;
+  return r;
+}
+
+namespace {
+
+/// One attempted step of size dt from the accepted state; on success the state advances.
+bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
+  const double t_new = im.t + dt;
+  DynamicStepSystem3D sys(im, t_new, dt, im.top(t_new));
+  Eigen::VectorXd Yv = im.Y + dt * im.Yd;  // predictor: constant rate
+  NewtonOptions no;
+  no.tolerance = im.opt.tolerance;
+  no.max_iterations = im.opt.max_iterations;
+  no.mu0 = im.opt.relaxation;
+  no.adaptive = im.opt.adaptive_relaxation;
+  const SolverSummary s = solveNewton(sys, Yv, no);
+  rep.newton_iterations += s.iterations;
+  im.totals.newton_iterations += s.iterations;
+  if (!s.converged) {
+    std::ostringstream os;
+    os << "t = " << t_new << " s (dt = " << dt << " s): " << s.message;
+    rep.message = os.str();
+    return false;
+  }
+  const double g = im.ga.gamma;
+  im.Yd = (Yv - im.Y) / (g * dt) - ((1.0 - g) / g) * im.Yd;  // eq. 26
+  im.Y = Yv;
+  im.t = t_new;
+  im.water = sys.water();
+  im.spatialRows(im.Y, im.water, im.S);
+  ++rep.steps;
+  ++im.totals.steps;
+  rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
+  return true;
+}
+
+}  // namespace
+
+StepReport DynamicSolver3D::advanceTo(double t_end) {
+  Impl& im = *impl_;
+  return advanceWithCuts(
+      im.t, im.opt.dt, im.opt.max_cut_levels, t_end, [&im](double dt, StepReport& rep) { return tryStep(im, dt, rep); },
+      [&im]() { ++im.totals.cuts; });
+}
+
+double DynamicSolver3D::jacobianFiniteDifferenceError(double dt) const {
+  const Impl& im = *impl_;
+  DynamicStepSystem3D sys(im, im.t + dt, dt, im.top(im.t + dt));
+  const JacobianCheck c = checkJacobian(sys, im.Y + dt * im.Yd);
+  return c.outside_band ? 1.0 : c.worst;
+}
+
+DynamicSeries runDynamic3D(const Problem& problem, const std::function<void(double, double)>& progress) {
+  return runDynamicWith<DynamicSolver3D>(problem, progress);
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics
