@@ -23,6 +23,7 @@
 #include "mooring_dynamics/core/problem_io.hpp"
 #include "mooring_dynamics/core/result.hpp"
 #include "mooring_dynamics/core/result_io.hpp"
+#include "mooring_dynamics/core/solvers.hpp"
 #include "mooring_dynamics/core/statics2d.hpp"
 #include "mooring_dynamics/core/time_integration.hpp"
 
@@ -109,29 +110,32 @@ class ProgressBar {
 
 std::string recordLabel(double s) { return fmtNum("%.6g", s); }
 
-void writeTimeseriesCsv(std::ostream& f, const core::DynamicSeries& r) {
-  f << "t,top_tension,anchor_tension,top_x,top_z";
+/// 3-D runs add the y columns (top_y, y_s<S>; y in the snapshots).
+void writeTimeseriesCsv(std::ostream& f, const core::DynamicSeries& r, bool three_d) {
+  f << (three_d ? "t,top_tension,anchor_tension,top_x,top_y,top_z" : "t,top_tension,anchor_tension,top_x,top_z");
   for (double s : r.record_s) {
     const std::string l = recordLabel(s);
-    f << ",tension_s" << l << ",x_s" << l << ",z_s" << l;
+    f << ",tension_s" << l << ",x_s" << l << (three_d ? ",y_s" + l : std::string()) << ",z_s" << l;
   }
   f << "\n";
   for (std::size_t k = 0; k < r.t.size(); ++k) {
     f << csvNum(r.t[k]) << "," << csvNum(r.top_tension[k]) << "," << csvNum(r.anchor_tension[k]) << ","
-      << csvNum(r.top_x[k]) << "," << csvNum(r.top_z[k]);
+      << csvNum(r.top_x[k]) << "," << (three_d ? csvNum(r.top_y[k]) + "," : std::string()) << csvNum(r.top_z[k]);
     for (std::size_t i = 0; i < r.record_s.size(); ++i)
-      f << "," << csvNum(r.node_tension[i][k]) << "," << csvNum(r.node_x[i][k]) << "," << csvNum(r.node_z[i][k]);
+      f << "," << csvNum(r.node_tension[i][k]) << "," << csvNum(r.node_x[i][k]) << ","
+        << (three_d ? csvNum(r.node_y[i][k]) + "," : std::string()) << csvNum(r.node_z[i][k]);
     f << "\n";
   }
 }
 
-void writeSnapshotsCsv(std::ostream& f, const core::DynamicSeries& r) {
-  f << "t,node,s,x,z,tension\n";
+void writeSnapshotsCsv(std::ostream& f, const core::DynamicSeries& r, bool three_d) {
+  f << (three_d ? "t,node,s,x,y,z,tension\n" : "t,node,s,x,z,tension\n");
   for (std::size_t k = 0; k < r.snapshots.size(); ++k) {
     const auto& nodes = r.snapshots[k].nodes;
     for (std::size_t j = 0; j < nodes.size(); ++j)
       f << csvNum(r.snapshot_t[k]) << "," << j << "," << csvNum(nodes[j].s) << "," << csvNum(nodes[j].x) << ","
-        << csvNum(nodes[j].z) << "," << csvNum(nodes[j].tension) << "\n";
+        << (three_d ? csvNum(nodes[j].y) + "," : std::string()) << csvNum(nodes[j].z) << ","
+        << csvNum(nodes[j].tension) << "\n";
   }
 }
 
@@ -156,6 +160,7 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
   const core::DynamicOptions& d = p.dynamics;
   f << "{\n"
     << "  \"problem\": " << jsonStr(p.name) << ",\n"
+    << "  \"model\": " << jsonStr(p.formulation == core::Formulation::ThreeD ? "3d" : "2d") << ",\n"
     << "  \"scheme\": {\"name\": " << jsonStr(d.scheme_name) << ", \"alpha_m\": " << jsonNum(d.scheme.alpha_m)
     << ", \"alpha_k\": " << jsonNum(d.scheme.alpha_k) << ", \"gamma\": " << jsonNum(d.scheme.gamma) << "},\n"
     << "  \"dt\": " << jsonNum(d.dt) << ",\n"
@@ -274,7 +279,7 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
   if (show_progress) progress = [&bar](double t, double total) { bar.update(t, total); };
   core::DynamicSeries series;
   try {
-    series = core::runDynamic(problem, progress);
+    series = core::runDynamicModel(problem, progress);
   } catch (const std::invalid_argument& e) {
     bar.finish();
     err << kProg << ": error: " << problem_path << ": " << e.what() << "\n";
@@ -300,18 +305,19 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
       return kExitIo;
     }
     std::vector<fs::path> written;
+    const bool three_d = problem.formulation == core::Formulation::ThreeD;
     const fs::path ts = dir / "timeseries.csv";
-    if (!writeFile(ts, [&](std::ostream& f) { writeTimeseriesCsv(f, series); }, err)) return kExitIo;
+    if (!writeFile(ts, [&](std::ostream& f) { writeTimeseriesCsv(f, series, three_d); }, err)) return kExitIo;
     written.push_back(ts);
     const fs::path snaps = dir / "snapshots.csv";
     if (!series.snapshots.empty()) {
-      if (!writeFile(snaps, [&](std::ostream& f) { writeSnapshotsCsv(f, series); }, err)) return kExitIo;
+      if (!writeFile(snaps, [&](std::ostream& f) { writeSnapshotsCsv(f, series, three_d); }, err)) return kExitIo;
       written.push_back(snaps);
     } else {
       fs::remove(snaps, ec);  // never leave a stale file from an earlier run next to new results
     }
     const fs::path stat = dir / "static_nodes.csv";
-    if (!writeFile(stat, [&](std::ostream& f) { core::writeStaticCsv(f, series.initial_static); }, err))
+    if (!writeFile(stat, [&](std::ostream& f) { core::writeStaticCsv(f, series.initial_static, problem.formulation); }, err))
       return kExitIo;
     written.push_back(stat);
     const fs::path js = dir / "dynamic_summary.json";

@@ -12,7 +12,7 @@
 #include "mooring_dynamics/core/problem_io.hpp"
 #include "mooring_dynamics/core/result.hpp"
 #include "mooring_dynamics/core/result_io.hpp"
-#include "mooring_dynamics/core/statics2d.hpp"
+#include "mooring_dynamics/core/solvers.hpp"
 
 namespace mooring_dynamics {
 namespace cli {
@@ -66,14 +66,14 @@ int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
   // Solve.
   core::StaticResult result;
   try {
-    result = core::solveStatic(problem);
+    result = core::solveStaticModel(problem);
   } catch (const std::invalid_argument& e) {
     err << kProg << ": error: " << problem_path << ": " << e.what() << "\n";
     return kExitBadInput;
   }
 
   out << core::staticSummaryText(problem, result);
-  if (want_table) out << "\n" << core::staticTableText(result, stride);
+  if (want_table) out << "\n" << core::staticTableText(result, stride, problem.formulation);
 
   // Outputs (written also when the solver did not converge: the JSON says so).
   if (!out_dir.empty()) {
@@ -88,7 +88,7 @@ int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
     const fs::path json = dir / "static.json";
     const fs::path csv = dir / "static_nodes.csv";
     if (!writeFile(json, [&](std::ostream& f) { core::writeStaticJson(f, problem, result); }, err)) return kExitIo;
-    if (!writeFile(csv, [&](std::ostream& f) { core::writeStaticCsv(f, result); }, err)) return kExitIo;
+    if (!writeFile(csv, [&](std::ostream& f) { core::writeStaticCsv(f, result, problem.formulation); }, err)) return kExitIo;
     out << "wrote " << json.string() << " and " << csv.string() << "\n";
   }
 

@@ -92,10 +92,14 @@ void writeStaticJson(std::ostream& out, const Problem& problem, const StaticResu
   out << "    \"relaxation\": " << jsonNumber(sm.relaxation) << ",\n";
   out << "    \"message\": " << jsonString(sm.message) << "\n";
   out << "  },\n";
-  out << "  \"top_force\": {\"x\": " << jsonNumber(r.top_force_x) << ", \"z\": " << jsonNumber(r.top_force_z)
-      << "},\n";
-  out << "  \"anchor_force\": {\"x\": " << jsonNumber(r.anchor_force_x)
-      << ", \"z\": " << jsonNumber(r.anchor_force_z) << "},\n";
+  const bool three_d = problem.formulation == Formulation::ThreeD;
+  out << "  \"model\": " << jsonString(three_d ? "3d" : "2d") << ",\n";
+  auto vec = [&](double x, double y, double z) {
+    return "{\"x\": " + jsonNumber(x) + (three_d ? ", \"y\": " + jsonNumber(y) : std::string()) +
+           ", \"z\": " + jsonNumber(z) + "}";
+  };
+  out << "  \"top_force\": " << vec(r.top_force_x, r.top_force_y, r.top_force_z) << ",\n";
+  out << "  \"anchor_force\": " << vec(r.anchor_force_x, r.anchor_force_y, r.anchor_force_z) << ",\n";
   out << "  \"top_tension\": " << jsonNumber(r.topTension()) << ",\n";
   out << "  \"buoy_draft\": " << jsonNumber(r.buoy_draft) << ",\n";
   out << "  \"node_count\": " << r.nodes.size() << ",\n";
@@ -103,27 +107,49 @@ void writeStaticJson(std::ostream& out, const Problem& problem, const StaticResu
   const auto& n = r.nodes;
   jsonArray(out, "s", n, [](const NodeState& v) { return jsonNumber(v.s); });
   jsonArray(out, "x", n, [](const NodeState& v) { return jsonNumber(v.x); });
+  if (three_d) jsonArray(out, "y", n, [](const NodeState& v) { return jsonNumber(v.y); });
   jsonArray(out, "z", n, [](const NodeState& v) { return jsonNumber(v.z); });
   jsonArray(out, "tension", n, [](const NodeState& v) { return jsonNumber(v.tension); });
   jsonArray(out, "shear", n, [](const NodeState& v) { return jsonNumber(v.shear); });
   jsonArray(out, "angle", n, [](const NodeState& v) { return jsonNumber(v.angle); });
   jsonArray(out, "curvature", n, [](const NodeState& v) { return jsonNumber(v.curvature); });
   jsonArray(out, "strain", n, [](const NodeState& v) { return jsonNumber(v.strain); });
+  if (three_d) {
+    jsonArray(out, "shear_b", n, [](const NodeState& v) { return jsonNumber(v.shear_b); });
+    jsonArray(out, "curvature_b", n, [](const NodeState& v) { return jsonNumber(v.curvature_b); });
+    jsonArray(out, "twist", n, [](const NodeState& v) { return jsonNumber(v.twist); });
+    jsonArray(out, "azimuth", n, [](const NodeState& v) { return jsonNumber(v.azimuth); });
+  }
   jsonArray(out, "segment", n, [](const NodeState& v) { return std::to_string(v.segment); }, true);
   out << "  },\n";
-  out << "  \"units\": {\"s\": \"m\", \"x\": \"m\", \"z\": \"m\", \"tension\": \"N\", \"shear\": \"N\", "
-         "\"angle\": \"rad from vertical, positive toward +x\", \"curvature\": \"1/m\", \"strain\": \"-\", "
-         "\"force\": \"N\", \"buoy_draft\": \"m\"}\n";
+  if (three_d)
+    out << "  \"units\": {\"s\": \"m\", \"x\": \"m\", \"y\": \"m\", \"z\": \"m\", \"tension\": \"N\", "
+           "\"shear\": \"N, along e2\", \"shear_b\": \"N, along e3\", \"angle\": \"rad, tangent from vertical\", "
+           "\"azimuth\": \"rad, tangent's horizontal direction ccw from +x\", \"curvature\": \"1/m, Omega3\", "
+           "\"curvature_b\": \"1/m, Omega2\", \"twist\": \"1/m, Omega1\", \"strain\": \"-\", "
+           "\"force\": \"N\", \"buoy_draft\": \"m\"}\n";
+  else
+    out << "  \"units\": {\"s\": \"m\", \"x\": \"m\", \"z\": \"m\", \"tension\": \"N\", \"shear\": \"N\", "
+           "\"angle\": \"rad from vertical, positive toward +x\", \"curvature\": \"1/m\", \"strain\": \"-\", "
+           "\"force\": \"N\", \"buoy_draft\": \"m\"}\n";
   out << "}\n";
 }
 
-void writeStaticCsv(std::ostream& out, const StaticResult& r) {
-  out << "node,s,x,z,tension,shear,angle_deg,curvature,strain,segment\n";
+void writeStaticCsv(std::ostream& out, const StaticResult& r, Formulation model) {
+  const bool three_d = model == Formulation::ThreeD;
+  out << (three_d ? "node,s,x,y,z,tension,shear,shear_b,angle_deg,azimuth_deg,curvature,curvature_b,twist,strain,segment\n"
+                  : "node,s,x,z,tension,shear,angle_deg,curvature,strain,segment\n");
   for (std::size_t i = 0; i < r.nodes.size(); ++i) {
     const NodeState& v = r.nodes[i];
-    out << i << ',' << csvNumber(v.s) << ',' << csvNumber(v.x) << ',' << csvNumber(v.z) << ','
-        << csvNumber(v.tension) << ',' << csvNumber(v.shear) << ',' << csvNumber(v.angle * kRadToDeg) << ','
-        << csvNumber(v.curvature) << ',' << csvNumber(v.strain) << ',' << v.segment << '\n';
+    out << i << ',' << csvNumber(v.s) << ',' << csvNumber(v.x) << ',';
+    if (three_d) out << csvNumber(v.y) << ',';
+    out << csvNumber(v.z) << ',' << csvNumber(v.tension) << ',' << csvNumber(v.shear) << ',';
+    if (three_d) out << csvNumber(v.shear_b) << ',';
+    out << csvNumber(v.angle * kRadToDeg) << ',';
+    if (three_d) out << csvNumber(v.azimuth * kRadToDeg) << ',';
+    out << csvNumber(v.curvature) << ',';
+    if (three_d) out << csvNumber(v.curvature_b) << ',' << csvNumber(v.twist) << ',';
+    out << csvNumber(v.strain) << ',' << v.segment << '\n';
   }
 }
 
@@ -142,28 +168,42 @@ std::string staticSummaryText(const Problem& problem, const StaticResult& r) {
   const NodeState& top = r.nodes.back();
   const auto mn = std::min_element(r.nodes.begin(), r.nodes.end(),
                                    [](const NodeState& a, const NodeState& b) { return a.tension < b.tension; });
-  o << "  top tension    " << fmt("%12.1f", r.topTension()) << " N   at x = " << fmt("%.2f", top.x)
+  const bool three_d = problem.formulation == Formulation::ThreeD;
+  const std::string ty = three_d ? " m, y = " + fmt("%.2f", top.y) : std::string();
+  const std::string fy = three_d ? " N, y = " + fmt("%.1f", r.top_force_y) : std::string();
+  const std::string ay = three_d ? " N, y = " + fmt("%.1f", r.anchor_force_y) : std::string();
+  o << "  top tension    " << fmt("%12.1f", r.topTension()) << " N   at x = " << fmt("%.2f", top.x) << ty
     << " m, z = " << fmt("%.2f", top.z) << " m\n";
-  o << "  top force      x = " << fmt("%.1f", r.top_force_x) << " N, z = " << fmt("%.1f", r.top_force_z) << " N\n";
-  o << "  anchor force   x = " << fmt("%.1f", r.anchor_force_x) << " N, z = " << fmt("%.1f", r.anchor_force_z)
+  o << "  top force      x = " << fmt("%.1f", r.top_force_x) << fy << " N, z = " << fmt("%.1f", r.top_force_z)
     << " N\n";
+  o << "  anchor force   x = " << fmt("%.1f", r.anchor_force_x) << ay << " N, z = " << fmt("%.1f", r.anchor_force_z)
+    << " N\n";
+  if (three_d) o << "  model          3-D (N = 13 with Euler parameters)\n";
   o << "  min tension    " << fmt("%12.1f", mn->tension) << " N   at s = " << fmt("%.2f", mn->s) << " m (node "
     << (mn - r.nodes.begin()) << ")\n";
   if (problem.top.type == TopBoundary::Type::Buoy) o << "  buoy draft     " << fmt("%.3f", r.buoy_draft) << " m\n";
   return o.str();
 }
 
-std::string staticTableText(const StaticResult& r, std::size_t stride) {
+std::string staticTableText(const StaticResult& r, std::size_t stride, Formulation model) {
   if (stride == 0) stride = 1;
+  const bool three_d = model == Formulation::ThreeD;
   std::ostringstream o;
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "%6s %12s %12s %12s %14s\n", "node", "s [m]", "x [m]", "z [m]", "tension [N]");
+  char buf[160];
+  if (three_d)
+    std::snprintf(buf, sizeof buf, "%6s %12s %12s %12s %12s %14s\n", "node", "s [m]", "x [m]", "y [m]", "z [m]",
+                  "tension [N]");
+  else
+    std::snprintf(buf, sizeof buf, "%6s %12s %12s %12s %14s\n", "node", "s [m]", "x [m]", "z [m]", "tension [N]");
   o << buf;
   const std::size_t n = r.nodes.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (i % stride != 0 && i + 1 != n) continue;
     const NodeState& v = r.nodes[i];
-    std::snprintf(buf, sizeof buf, "%6zu %12.3f %12.3f %12.3f %14.2f\n", i, v.s, v.x, v.z, v.tension);
+    if (three_d)
+      std::snprintf(buf, sizeof buf, "%6zu %12.3f %12.3f %12.3f %12.3f %14.2f\n", i, v.s, v.x, v.y, v.z, v.tension);
+    else
+      std::snprintf(buf, sizeof buf, "%6zu %12.3f %12.3f %12.3f %14.2f\n", i, v.s, v.x, v.z, v.tension);
     o << buf;
   }
   return o.str();

@@ -34,7 +34,7 @@ CableState toCableState(const std::vector<core::NodeState>& nodes, const EndForc
     msg.s.push_back(ns.s);
     geometry_msgs::Point p;
     p.x = ns.x;
-    p.y = 0.0;
+    p.y = ns.y;  // 0 from the 2-D solver
     p.z = ns.z;
     msg.positions.push_back(p);
     msg.tension.push_back(ns.tension);
@@ -44,10 +44,10 @@ CableState toCableState(const std::vector<core::NodeState>& nodes, const EndForc
     tmin = std::min(tmin, ns.tension);
   }
   msg.top_force.x = forces.top_x;
-  msg.top_force.y = 0.0;
+  msg.top_force.y = forces.top_y;
   msg.top_force.z = forces.top_z;
   msg.anchor_force.x = forces.anchor_x;
-  msg.anchor_force.y = 0.0;
+  msg.anchor_force.y = forces.anchor_y;
   msg.anchor_force.z = forces.anchor_z;
   msg.min_tension = n ? tmin : 0.0;
   msg.slack = n > 0 && tmin <= 0.0;
@@ -59,8 +59,10 @@ CableState toCableState(const core::StaticResult& result, const std::string& lin
                         const std::string& frame_id, const ros::Time& stamp) {
   EndForces f;
   f.top_x = result.top_force_x;
+  f.top_y = result.top_force_y;
   f.top_z = result.top_force_z;
   f.anchor_x = result.anchor_force_x;
+  f.anchor_y = result.anchor_force_y;
   f.anchor_z = result.anchor_force_z;
   return toCableState(result.nodes, f, result.summary.converged, line_name, frame_id, stamp);
 }
@@ -70,10 +72,10 @@ void toResponse(const core::StaticResult& result, SolveStatic::Response& res) {
   res.message = result.summary.message;
   res.iterations = result.summary.iterations;
   res.top_force.x = result.top_force_x;
-  res.top_force.y = 0.0;
+  res.top_force.y = result.top_force_y;
   res.top_force.z = result.top_force_z;
   res.anchor_force.x = result.anchor_force_x;
-  res.anchor_force.y = 0.0;
+  res.anchor_force.y = result.anchor_force_y;
   res.anchor_force.z = result.anchor_force_z;
   res.positions.clear();
   res.tension.clear();
@@ -82,7 +84,7 @@ void toResponse(const core::StaticResult& result, SolveStatic::Response& res) {
   for (const core::NodeState& ns : result.nodes) {
     geometry_msgs::Point p;
     p.x = ns.x;
-    p.y = 0.0;
+    p.y = ns.y;  // 0 from the 2-D solver
     p.z = ns.z;
     res.positions.push_back(p);
     res.tension.push_back(ns.tension);

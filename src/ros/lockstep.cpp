@@ -64,6 +64,9 @@ LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const Lo
                                LockstepSolverFactory factory)
     : problem_(problem), options_(options), factory_(std::move(factory)) {
   if (!(std::isfinite(dt) && dt > 0.0)) throw std::invalid_argument("dt = " + formatNumber(dt) + ": must be > 0");
+  if (problem.formulation == core::Formulation::ThreeD)
+    throw std::invalid_argument("model = 3d: the lockstep dynamic mode runs the 2-D solver so far (x-z plane); "
+                                "use model: 2d, or ~mode static for the 3-D static solve");
   if (!factory_) factory_ = makeSolver2D();
   problem_.dynamics.dt = dt;
   problem_.dynamics.output_interval = 0.0;

@@ -8,7 +8,7 @@
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/statics2d.hpp"
+#include "mooring_dynamics/core/solvers.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 
 namespace mooring_dynamics {
@@ -86,7 +86,7 @@ core::Problem loadProblemFromParams(const ros::NodeHandle& pnh, std::string& sou
 SolveOutcome solveSafely(const core::Problem& problem) {
   SolveOutcome out;
   try {
-    out.result = core::solveStatic(problem);
+    out.result = core::solveStaticModel(problem);
     out.solver_ran = true;
   } catch (const std::invalid_argument& e) {
     out.message = std::string("invalid problem: ") + e.what();

@@ -510,3 +510,61 @@ TEST_F(CliTest, PlotWithoutResultsExitsThree) {
 }
 
 }  // namespace
+
+// ---- model: 3d ----------------------------------------------------------------------------------
+
+// The small catenary turned out of the x-z plane (top at 45 deg), with a current across it.
+const char* const k3DProblem = R"(name: small 3-D catenary
+model: 3d
+environment:
+  depth: 80
+  seabed: {stiffness: 1.0e6}
+  current: {speed: 0.3, direction_deg: 90}
+materials:
+  wire: {EA: 1.0e8, EI: 1.0, GJ: 1.0, mass: 11.82, added_mass: 1.63, wet_weight: 100.0,
+         diameter: 0.045, cdn: 1.2, cdt: 0.01}
+line:
+  - {material: wire, length: 100.0, spacing: 10.0}
+anchor: {x: 0, y: 0, z: -60}
+top:
+  position: {x: 56.5685424949, y: 56.5685424949, z: 0}
+dynamics:
+  duration: 1.0
+  dt: 0.1
+  record_s: [50]
+  top_motion: {type: sinusoid, amplitude_y: 0.3, period: 5}
+)";
+
+TEST_F(CliTest, ThreeDimensionalModelWritesYColumns) {
+  const fs::path p = file("line3d.yaml", k3DProblem);
+  const fs::path out = dir_ / "s3";
+  const RunResult r = run({"static", p.string(), "--out", out.string(), "--table"});
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("3-D"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("y [m]"), std::string::npos) << r.out;
+  const std::string csv = readText(out / "static_nodes.csv");
+  EXPECT_EQ(csv.rfind("node,s,x,y,z,tension,shear,shear_b", 0), 0u) << csv.substr(0, 200);
+  const std::vector<std::string> top = cells(lastLine(csv));
+  EXPECT_NEAR(std::stod(top[2]), 56.5685424949, 1e-6);
+  EXPECT_NEAR(std::stod(top[3]), 56.5685424949, 1e-6);
+  const std::string json = readText(out / "static.json");
+  EXPECT_NE(json.find("\"model\": \"3d\""), std::string::npos) << json.substr(0, 300);
+  EXPECT_NE(json.find("\"y\": ["), std::string::npos);
+
+  const fs::path dout = dir_ / "d3";
+  const RunResult d = run({"dynamic", p.string(), "--out", dout.string()});
+  ASSERT_EQ(d.code, 0) << d.out << d.err;
+  const std::string ts = readText(dout / "timeseries.csv");
+  EXPECT_EQ(ts.substr(0, ts.find('\n')), "t,top_tension,anchor_tension,top_x,top_y,top_z,tension_s50,x_s50,y_s50,z_s50");
+  EXPECT_EQ(countLines(ts), 1u + 11u);
+  EXPECT_NE(readText(dout / "dynamic_summary.json").find("\"model\": \"3d\""), std::string::npos);
+}
+
+TEST_F(CliTest, TwoDimensionalModelRejectsYAndSaysWhy) {
+  std::string text = k3DProblem;
+  text.replace(text.find("model: 3d\n"), 10, "");
+  const RunResult r = run({"static", file("line2d.yaml", text).string()});
+  EXPECT_EQ(r.code, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find("top.position.y"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("model: 3d"), std::string::npos) << r.err;
+}

@@ -14,13 +14,15 @@ namespace core {
 void writeStaticJson(std::ostream& out, const Problem& problem, const StaticResult& result);
 
 /// CSV with header `node,s,x,z,tension,shear,angle_deg,curvature,strain,segment`.
-void writeStaticCsv(std::ostream& out, const StaticResult& result);
+/// 3-D results add the columns y, shear_b, azimuth_deg, curvature_b and twist.
+void writeStaticCsv(std::ostream& out, const StaticResult& result, Formulation model = Formulation::TwoD);
 
 /// Short human-readable summary (a few lines) for terminals.
 std::string staticSummaryText(const Problem& problem, const StaticResult& result);
 
 /// Readable table: node, s, x, z, tension (every `stride`-th node, always the first and last).
-std::string staticTableText(const StaticResult& result, std::size_t stride = 1);
+std::string staticTableText(const StaticResult& result, std::size_t stride = 1,
+                            Formulation model = Formulation::TwoD);
 
 }  // namespace core
 }  // namespace mooring_dynamics

@@ -20,8 +20,9 @@ namespace ros_bridge {
 
 /// End forces of a line in the x-z plane [N] (same conventions as core::StaticResult).
 struct EndForces {
-  double top_x = 0.0, top_z = 0.0;        ///< force the platform applies to the line's top end
-  double anchor_x = 0.0, anchor_z = 0.0;  ///< force the line exerts on the anchor
+  double top_x = 0.0, top_z = 0.0;        ///< force the platform applies to the line's top end [N]
+  double anchor_x = 0.0, anchor_z = 0.0;  ///< force the line exerts on the anchor [N]
+  double top_y = 0.0, anchor_y = 0.0;     ///< y components [N] (3-D model; 0 from the 2-D solver)
 };
 
 /// CableState from per-node values (anchor first). Shared by the static and, later, the dynamic
