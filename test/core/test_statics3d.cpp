@@ -294,3 +294,24 @@ TEST(Problem3D, TwoDimensionalModelRejectsOutOfPlaneGeometry) {
   p.formulation = Formulation::ThreeD;
   EXPECT_EQ(p.validate(), "");
 }
+
+TEST(Statics3D, ShippedCrossCurrentMooringLiesInTheCurrentsPlane) {
+  // config/chain_mooring_3d.yaml: the A.3 buoy mooring in a uniform current toward 60 deg. The
+  // only horizontal loads (current drag on line, bodies and buoy) point along the current, so the
+  // equilibrium is the planar A.3 solution turned into the current's vertical plane.
+  const Problem p = loadProblemFromFile("config/chain_mooring_3d.yaml");
+  ASSERT_EQ(p.formulation, Formulation::ThreeD);
+  const StaticResult r = solveStatic3D(p);
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  Problem planar = p;
+  planar.formulation = Formulation::TwoD;
+  for (auto& c : planar.environment.current) c.direction = 0.0;
+  const StaticResult r2 = solveStatic(planar);
+  ASSERT_TRUE(r2.summary.converged);
+  const double a = 60.0 * kPi / 180.0;
+  for (std::size_t j = 0; j < r.nodes.size(); ++j) {
+    EXPECT_NEAR(r.nodes[j].x, std::cos(a) * r2.nodes[j].x, kRotationPosTol);
+    EXPECT_NEAR(r.nodes[j].y, std::sin(a) * r2.nodes[j].x, kRotationPosTol);
+    EXPECT_NEAR(r.nodes[j].tension, r2.nodes[j].tension, kRotationRelTol * r2.topTension());
+  }
+}
