@@ -1,0 +1,123 @@
+// 3-D dynamic-solver cost (equations3d.hpp: N = 13 plus coordinates, generalized-alpha, Newton
+// with adaptive relaxation, banded LU with kl = 25, ku = 21).
+//
+// BM_Dynamic3DStepCost/<nodes>: cost of one time step against node count on the grounded chain
+// of bench_static / bench_dynamic (bench_problems.hpp), model: 3d, with a uniform 0.5 m/s current
+// at 45 deg to the line's plane (a non-planar line), heaved at the top, z = z0 + 1 m
+// (1 - cos(2 pi t / 10 s)) from rest, lambda_inf = -0.5, dt = 0.1 s, 20 steps per benchmark
+// iteration. Only advanceTo() is timed. Counters as in bench_dynamic: nodes, steps, cuts,
+// newton_iters, newton_per_step, ns_per_step_node, and ns_per_iter_node (wall time per Newton
+// iteration and node).
+//
+// BM_ChainMooring3DRealTimeFactor: config/chain_mooring_3d.yaml (A.3 in a 60 deg cross current,
+// heave 2 m and sway 1 m at 8 s, dt 0.1 s), 20 s through runDynamic3D. Counter real_time_factor.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "mooring_dynamics/core/dynamics3d.hpp"
+#include "mooring_dynamics/core/problem_io.hpp"
+#include "bench_problems.hpp"
+
+namespace md = mooring_dynamics::core;
+
+namespace {
+
+constexpr double kDt = 0.1;  // [s]
+constexpr int kSteps = 20;
+constexpr double kTwoPi = 6.283185307179586;
+
+md::Problem heavedChain3D(int nodes) {
+  md::Problem p = mooring_dynamics::bench::chainWithSeabed(nodes);
+  p.name = "bench heaved chain in a cross current (3-D)";
+  p.formulation = md::Formulation::ThreeD;
+  p.environment.seabed.damping = 2.0e4;
+  md::CurrentPoint c;
+  c.speed = 0.5;
+  c.direction = 0.25 * kTwoPi / 2.0;  // 45 deg
+  p.environment.current = {c};
+  md::DynamicOptions& d = p.dynamics;
+  d.duration = kSteps * kDt;
+  d.dt = kDt;
+  d.scheme = md::GeneralizedAlpha::fromLambdaInf(-0.5);
+  d.top_motion.type = md::TopMotion::Type::Sinusoid;
+  d.top_motion.amplitude_z = 1.0;
+  d.top_motion.period = 10.0;
+  d.top_motion.phase = -0.25 * kTwoPi;
+  return p;
+}
+
+void BM_Dynamic3DStepCost(benchmark::State& state) {
+  const md::Problem problem = heavedChain3D(static_cast<int>(state.range(0)));
+  long steps = 0, cuts = 0, newton = 0, iterations = 0;
+  std::size_t node_count = 0;
+  double seconds = 0.0;
+  for (auto _ : state) {
+    md::DynamicSolver3D solver(problem);
+    node_count = solver.nodeArclengths().size();
+    const auto t0 = std::chrono::steady_clock::now();
+    const md::StepReport rep = solver.advanceTo(kSteps * kDt);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    state.SetIterationTime(dt);
+    if (!rep.ok) {
+      state.SkipWithError(("dynamic run failed: " + rep.message).c_str());
+      return;
+    }
+    seconds += dt;
+    steps += rep.steps;
+    cuts += rep.cuts;
+    newton += rep.newton_iterations;
+    ++iterations;
+  }
+  if (iterations == 0) return;
+  const double n = static_cast<double>(iterations), nodes = static_cast<double>(node_count);
+  state.counters["nodes"] = nodes;
+  state.counters["steps"] = static_cast<double>(steps) / n;
+  state.counters["cuts"] = static_cast<double>(cuts) / n;
+  state.counters["newton_iters"] = static_cast<double>(newton) / n;
+  state.counters["newton_per_step"] = static_cast<double>(newton) / static_cast<double>(steps);
+  state.counters["ns_per_step_node"] = 1e9 * seconds / (static_cast<double>(steps) * nodes);
+  state.counters["ns_per_iter_node"] = 1e9 * seconds / (static_cast<double>(newton) * nodes);
+}
+
+void BM_ChainMooring3DRealTimeFactor(benchmark::State& state) {
+  constexpr double kDuration = 20.0;  // [s] simulated
+  const char* root = std::getenv("MD_ROOT");
+  if (root == nullptr || *root == '\0') {
+    state.SkipWithError("config/chain_mooring_3d.yaml not found: set MD_ROOT (source scripts/env.sh)");
+    return;
+  }
+  md::Problem problem;
+  try {
+    problem = md::loadProblemFromFile(std::string(root) + "/config/chain_mooring_3d.yaml");
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  problem.dynamics.duration = kDuration;
+  problem.dynamics.snapshot_interval = 0.0;
+  double wall = 0.0;
+  long iterations = 0;
+  for (auto _ : state) {
+    const md::DynamicSeries r = md::runDynamic3D(problem);
+    if (!r.completed) {
+      state.SkipWithError(("run failed: " + r.message).c_str());
+      return;
+    }
+    state.SetIterationTime(r.wall_seconds);
+    wall += r.wall_seconds;
+    ++iterations;
+  }
+  if (iterations > 0) state.counters["real_time_factor"] = kDuration * static_cast<double>(iterations) / wall;
+}
+
+}  // namespace
+
+BENCHMARK(BM_Dynamic3DStepCost)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(800)->UseManualTime()
+    ->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ChainMooring3DRealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
+
+BENCHMARK_MAIN();
