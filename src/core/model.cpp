@@ -358,6 +358,20 @@ std::string Problem::validate() const {
   if (!(e = check(anchor_z >= zb - 1e-6 * env.depth, "anchor.z", anchor_z,
                   "is below the seabed elevation " + fmt(zb) + " m at anchor.x")).empty()) return e;
 
+  if (lower_end == LowerEnd::Free) {
+    if (formulation != Formulation::ThreeD)
+      return "free_end: a free lower end (towing) needs model: 3d";
+    if (end_body != kNoBody && end_body >= bodies.size())
+      return "free_end.body index " + std::to_string(end_body) + ": unknown body";
+    if (top.type != TopBoundary::Type::Position)
+      return "top: a line with a free lower end needs top.position (the tow point); a force or buoy top "
+             "leaves the line's position undetermined";
+  }
+  if (!(e = check(finite(top.tow_vx) && finite(top.tow_vy), "top.tow_velocity", std::hypot(top.tow_vx, top.tow_vy),
+                  "must be finite")).empty()) return e;
+  if ((top.tow_vx != 0.0 || top.tow_vy != 0.0) && lower_end != LowerEnd::Free)
+    return "top.tow_velocity = (" + fmt(top.tow_vx) + ", " + fmt(top.tow_vy) +
+           "): only for a line with a free lower end (free_end:); an anchored line has no steady tow";
   switch (top.type) {
     case TopBoundary::Type::Force:
       if (!(e = check(finite(top.fx), "top.force.x", top.fx, "must be finite")).empty()) return e;
@@ -372,7 +386,7 @@ std::string Problem::validate() const {
       for (const auto& s : segments) reach += s.length * (1.0 + materials[s.material].max_strain);
       const double dx = top.x - anchor_x, dy = top.y - anchor_y, dz = top.z - anchor_z;
       const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
-      if (!(dist < reach)) {
+      if (!(dist < reach) && lower_end == LowerEnd::Anchor) {
         const std::string at = formulation == Formulation::TwoD
                                    ? fmt(top.x) + ", " + fmt(top.z)
                                    : fmt(top.x) + ", " + fmt(top.y) + ", " + fmt(top.z);

@@ -196,10 +196,12 @@ std::size_t lookup(const Item& it, const std::map<std::string, std::size_t>& tab
 }
 
 void readTop(const Item& it, TopBoundary& top) {
-  const Map m(it, {"position", "force", "buoy"});
+  const Map m(it, {"position", "force", "buoy", "tow_velocity"});
   std::vector<std::string> given;
   for (const char* k : {"position", "force", "buoy"})
     if (m.has(k)) given.push_back(k);
+  if (m.has("tow_velocity") && !m.has("position"))
+    m.at("tow_velocity").fail("only with top.position (the tow point of a line with a free lower end)");
   if (given.size() != 1)
     throw ProblemError("top: " +
                        (given.empty() ? std::string("no boundary condition given")
@@ -211,6 +213,11 @@ void readTop(const Item& it, TopBoundary& top) {
     top.x = p.number("x");
     top.y = p.number("y", 0.0, Range::Any);
     top.z = p.number("z");
+    if (m.has("tow_velocity")) {
+      const Map v(m.at("tow_velocity"), {"x", "y"});
+      top.tow_vx = v.number("x", 0.0, Range::Any);
+      top.tow_vy = v.number("y", 0.0, Range::Any);
+    }
   } else if (m.has("force")) {
     const Map f(m.at("force"), {"x", "y", "z"});
     top.type = TopBoundary::Type::Force;
@@ -367,8 +374,8 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   if (!root.IsMap())
     throw ProblemError("top level: expected a map with keys materials, line, top, ..., found " + typeName(root) +
                        lineSuffix(rit.mark));
-  const Map top(rit, {"name", "model", "environment", "materials", "bodies", "line", "anchor", "top", "solver",
-                      "dynamics"});
+  const Map top(rit, {"name", "model", "environment", "materials", "bodies", "line", "anchor", "free_end", "top",
+                      "solver", "dynamics"});
   Problem pb;
   if (top.has("name")) pb.name = readString(top.at("name"));
   if (top.has("model")) {
@@ -444,6 +451,16 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   }
   if (!anchor_z_given) pb.anchor_z = pb.environment.seabedElevation(pb.anchor_x, pb.anchor_y);
 
+  if (top.has("free_end")) {
+    const Item fe = top.at("free_end");
+    if (presentAndNotNull(top, "anchor"))
+      fe.fail("give either anchor (a moored line) or free_end (a towed line), not both");
+    pb.lower_end = Problem::LowerEnd::Free;
+    if (!fe.node.IsNull()) {
+      const Map f(fe, {"body"});
+      if (f.has("body")) pb.end_body = lookup(f.at("body"), body_index, body_names, "body");
+    }
+  }
   readTop(top.required("top"), pb.top);
   if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), pb.static_options);
   if (presentAndNotNull(top, "dynamics")) readDynamics(top.at("dynamics"), pb.dynamics, pb.totalLength());

@@ -9,6 +9,7 @@
 #include "mooring_dynamics/core/initial_guess.hpp"
 #include "mooring_dynamics/core/static_system.hpp"
 #include "mooring_dynamics/core/statics2d.hpp"
+#include "mooring_dynamics/core/towing.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -93,9 +94,14 @@ void StaticSystem3D::evaluate(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, Ban
     r[0] = y[U1];
     r[1] = y[U2];
     r[2] = y[U3];
-    r[3] = y[X] - problem_.anchor_x;
-    r[4] = y[Y] - problem_.anchor_y;
-    r[5] = y[Z] - problem_.anchor_z;
+    if (problem_.lower_end == Problem::LowerEnd::Free) {
+      // Towing: the end body's force balance instead of a fixed position (section 5.2).
+      freeEndForces(problem_, problem_.materials[mesh_.nodes.front().material], y, water[0], r + 3);
+    } else {
+      r[3] = y[X] - problem_.anchor_x;
+      r[4] = y[Y] - problem_.anchor_y;
+      r[5] = y[Z] - problem_.anchor_z;
+    }
     r[6] = y[O2];
     r[7] = y[O3];
     r[8] = normDefect(y);
@@ -337,9 +343,13 @@ StaticState3D solveStatic3DOnMesh(const Problem& problem, const Mesh& mesh, cons
   if (!err.empty()) throw std::invalid_argument(err);
 
   StaticState3D out;
-  out.Y = planarInitialGuess3D(problem, mesh, initialGuessAzimuth(problem));
+  // A towed line is solved in the frame moving with the tow point: the current relative to it.
+  Problem solved = problem;
+  const bool towed = problem.lower_end == Problem::LowerEnd::Free;
+  if (towed) solved.environment = relativeEnvironment(problem.environment, problem.top.tow_vx, problem.top.tow_vy);
+  out.Y = towed ? towedInitialGuess3D(solved, mesh) : planarInitialGuess3D(problem, mesh, initialGuessAzimuth(problem));
   const double q_ref[4] = {out.Y[Q0], out.Y[Q1], out.Y[Q2], out.Y[Q3]};
-  StaticSystem3D system(problem, mesh, q_ref);
+  StaticSystem3D system(solved, mesh, q_ref);
   const SolverSummary summary = solveNewton(system, out.Y, newtonOptions(options));
   out.result = staticResult3DFromState(problem, mesh, out.Y);
   out.result.summary = summary;

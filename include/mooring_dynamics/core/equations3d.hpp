@@ -245,6 +245,30 @@ void intervalInertia(const Environment& env, const Material& mat, double h, cons
   for (int r = 0; r < kInertiaRows; ++r) R[r] = 0.5 * h * (ia[r] + ib[r]);
 }
 
+/// Adds a point body's load [N] to P (problem frame): wet weight, and drag on the water velocity
+/// relative to the body `r`, split along the unit tangent `t` (cdt) and across it (cdn), on the
+/// projected area of the body's equivalent sphere.
+template <class S>
+void addBodyLoad(const Environment& env, const Body& b, const S* t, const S* r, S* P) {
+  using std::sqrt;
+  const S rt = r[0] * t[0] + r[1] * t[1] + r[2] * t[2];
+  const S rn[3] = {r[0] - rt * t[0], r[1] - rt * t[1], r[2] - rt * t[2]};
+  const S rnm = sqrt(rn[0] * rn[0] + rn[1] * rn[1] + rn[2] * rn[2] + kDragSpeedFloor * kDragSpeedFloor);
+  const double q = 0.5 * env.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter;
+  const S dt = q * b.cdt * signedSquare(rt);
+  for (int i = 0; i < 3; ++i) P[i] = P[i] + dt * t[i] + q * b.cdn * rnm * rn[i];
+  P[2] = P[2] - b.wet_weight;
+}
+
+/// Water velocity relative to a node (global) [m/s].
+template <class S>
+void relativeWater(const S* Yn, const S* R, const Water& w, S* r) {
+  S V[3], wg[3];
+  quat::toGlobal(R, Yn + U1, V);
+  waterVelocity(w, Yn, wg);
+  for (int i = 0; i < 3; ++i) r[i] = wg[i] - V[i];
+}
+
 /// Concentrated load of the inline bodies of a junction on the line [N], problem frame: wet
 /// weight and drag on the water velocity relative to the node, split along the line's tangent at
 /// the junction (the bisector of the two sides' tangents, the 2-D mean angle) and across it.
@@ -253,25 +277,44 @@ void bodyLoads(const Problem& p, const MeshInterval& iv, const S* Ya, const S* Y
   using std::sqrt;
   for (int i = 0; i < 3; ++i) P[i] = zeroLike(Ya[EPS]);
   if (iv.bodies.empty()) return;
-  S Ra[9], Rb[9], V[3], wg[3];
+  S Ra[9], Rb[9], r[3];
   quat::matrix(Ya + Q0, Ra);
   quat::matrix(Yb + Q0, Rb);
-  quat::toGlobal(Ra, Ya + U1, V);
-  waterVelocity(w, Ya, wg);
+  relativeWater(Ya, Ra, w, r);
   S t[3] = {Ra[0] + Rb[0], Ra[3] + Rb[3], Ra[6] + Rb[6]};
   const S tn = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
   for (S& c : t) c = c / tn;
-  const S r[3] = {wg[0] - V[0], wg[1] - V[1], wg[2] - V[2]};
-  const S rt = r[0] * t[0] + r[1] * t[1] + r[2] * t[2];
-  const S rn[3] = {r[0] - rt * t[0], r[1] - rt * t[1], r[2] - rt * t[2]};
-  const S rnm = sqrt(rn[0] * rn[0] + rn[1] * rn[1] + rn[2] * rn[2] + kDragSpeedFloor * kDragSpeedFloor);
-  for (std::size_t k : iv.bodies) {
-    const Body& b = p.bodies[k];
-    const double q = 0.5 * p.environment.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter;
-    const S dt = q * b.cdt * signedSquare(rt);
-    for (int i = 0; i < 3; ++i) P[i] = P[i] + dt * t[i] + q * b.cdn * rnm * rn[i];
-    P[2] = P[2] - b.wet_weight;
+  for (std::size_t k : iv.bodies) addBodyLoad(p.environment, p.bodies[k], t, r, P);
+}
+
+/// Free lower end (towing, paper section 5.2): the spatial part of the end body's force balance,
+/// F_0 + P = 0 [N] (problem frame), F_0 the internal force at node 0 (the line's pull on the
+/// body) and P the body's weight and drag (tangent e1 of node 0); F_0 = 0 without a body.
+template <class S>
+void freeEndForces(const Problem& p, const Material& m0, const S* Y0, const Water& w, S* R) {
+  S F[3], P[3] = {zeroLike(Y0[EPS]), zeroLike(Y0[EPS]), zeroLike(Y0[EPS])};
+  internalForce(m0, Y0, F);
+  if (p.end_body != Problem::kNoBody) {
+    S Rm[9], r[3];
+    quat::matrix(Y0 + Q0, Rm);
+    relativeWater(Y0, Rm, w, r);
+    const S t[3] = {Rm[0], Rm[3], Rm[6]};
+    addBodyLoad(p.environment, p.bodies[p.end_body], t, r, P);
   }
+  for (int i = 0; i < 3; ++i) R[i] = F[i] + P[i];
+}
+
+/// Inertia of the end body (rows of freeEndForces): minus its mass and added mass times node 0's
+/// acceleration [N].
+template <class S>
+void freeEndInertia(const Problem& p, const S* Y0, const S* Yd0, S* R) {
+  const double mass =
+      p.end_body == Problem::kNoBody ? 0.0 : p.bodies[p.end_body].mass + p.bodies[p.end_body].added_mass;
+  S Rm[9], a[3], ag[3];
+  quat::matrix(Y0 + Q0, Rm);
+  acceleration(Y0, Yd0, a);
+  quat::toGlobal(Rm, a, ag);
+  for (int i = 0; i < 3; ++i) R[i] = -mass * ag[i];
 }
 
 /// Junction (pin joint, equations2d.hpp) between nodes a and b at the same arclength: spatial

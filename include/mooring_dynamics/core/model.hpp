@@ -169,6 +169,10 @@ struct TopBoundary {
   double fy = 0.0;             ///< Force, y component [N] (3-D model only; 0 in 2-D)
   double x = 0.0, z = 0.0;     ///< Position: top end position in the problem frame [m]
   double y = 0.0;              ///< Position, y component [m] (3-D model only; 0 in 2-D)
+  /// Position with a free lower end (towing): the top moves steadily at this horizontal velocity
+  /// [m/s] and statics solve the steady tow in the frame moving with it, i.e. with the water
+  /// velocity relative to the top (current minus this velocity). YAML `top.tow_velocity`.
+  double tow_vx = 0.0, tow_vy = 0.0;
   SurfaceBuoy buoy;            ///< Buoy: the buoy that floats at the top
 };
 
@@ -203,6 +207,12 @@ struct Problem {
   std::vector<Material> materials;
   std::vector<Body> bodies;
   std::vector<Segment> segments;  ///< anchor to top
+  /// The lower end (node 0): held by the anchor, or free (a towed line, a drogue) with an
+  /// optional body hanging there. YAML `free_end:` instead of `anchor:`. 3-D model only.
+  enum class LowerEnd { Anchor, Free };
+  LowerEnd lower_end = LowerEnd::Anchor;
+  static constexpr std::size_t kNoBody = static_cast<std::size_t>(-1);
+  std::size_t end_body = kNoBody;  ///< index into bodies of the body at a free lower end (tow body), or kNoBody
   double anchor_x = 0.0;          ///< anchor position [m]
   double anchor_y = 0.0;          ///< [m] (3-D model only; 0 in 2-D)
   double anchor_z = -100.0;       ///< [m]

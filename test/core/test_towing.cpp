@@ -1,0 +1,208 @@
+// Towing (free lower end, paper sections 5.2 and 7.1) against independent answers: the critical
+// angle of a long towed cable with normal drag only (a straight line, closed form), the steady tow
+// of a cable with a tow body against an independent RK4 integration of the static towing
+// equations, the relative environment, and the input checks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Core>
+
+#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/statics3d.hpp"
+#include "mooring_dynamics/core/towing.hpp"
+
+using namespace mooring_dynamics::core;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Critical angle: the straight line is the exact solution of the box rows up to the strain's
+// sqrt(1 + eps) in the drag (eps < 1e-6 here) and bending at the ends (EI = 1e-3): 1e-4 rad.
+constexpr double kAngleTol = 1e-4;  // [rad]
+// RK4 with 2000 steps against the box scheme at 1 m: both far below 1e-4 of the tension; EI and
+// the box scheme's O(h^2) near the body leave about 1e-5.
+constexpr double kShootRelTol = 2e-4;
+constexpr double kShootPosTol = 0.05;  // [m] over 300 m of cable
+
+Material towCable(double cdt) {
+  Material m;
+  m.name = "tow";
+  m.EA = 1.0e10;  // nearly inextensible: the closed forms have no strain
+  m.EI = 1.0e-3;
+  m.GJ = 1.0e-3;
+  m.mass = 2.37;
+  m.added_mass = 1.33;
+  m.wet_weight = 10.0;
+  m.diameter = 0.041;
+  m.cdn = 1.5;
+  m.cdt = cdt;
+  return m;
+}
+
+Problem towedLine(double U, bool body) {
+  Problem p;
+  p.formulation = Formulation::ThreeD;
+  p.environment.depth = 2000.0;
+  p.materials.push_back(towCable(0.0));
+  Segment s;
+  s.length = 300.0;
+  s.spacing = 1.0;
+  p.segments.push_back(s);
+  p.lower_end = Problem::LowerEnd::Free;
+  if (body) {
+    Body b;
+    b.name = "towfish";
+    b.mass = 500.0;
+    b.added_mass = 200.0;
+    b.wet_weight = 2000.0;
+    b.diameter = 0.6;
+    b.cdn = 1.0;
+    b.cdt = 1.0;
+    p.bodies.push_back(b);
+    p.end_body = 0;
+  }
+  p.top.type = TopBoundary::Type::Position;
+  p.top.x = 0.0;
+  p.top.z = -1.0;
+  p.top.tow_vx = U;
+  return p;
+}
+
+}  // namespace
+
+TEST(Towing, RelativeEnvironmentSubtractsTheTowVelocity) {
+  Environment env;
+  env.current = {{0.0, 1.0, 0.5 * kPi}, {100.0, 0.5, 0.5 * kPi}};
+  const Environment rel = relativeEnvironment(env, 2.0, 0.0);
+  double ux, uy;
+  rel.currentAt(-50.0, ux, uy);
+  EXPECT_NEAR(ux, -2.0, 1e-12);
+  EXPECT_NEAR(uy, 0.75, 1e-12);
+  const Environment none = relativeEnvironment(Environment{}, 3.0, -1.0);
+  none.currentAt(-500.0, ux, uy);
+  EXPECT_NEAR(ux, -3.0, 1e-12);
+  EXPECT_NEAR(uy, 1.0, 1e-12);
+}
+
+TEST(Towing, LongCableWithNormalDragOnlyTowsAtTheCriticalAngle) {
+  // Normal drag balances the normal weight along a straight line: w sin(phi) = R w cos^2(phi),
+  // R = rho d Cdn U^2 / (2 w), phi from the vertical; the tension grows as w cos(phi) s from the
+  // free end (no tangential drag).
+  for (double U : {0.5, 1.5, 3.0}) {
+    const Problem p = towedLine(U, false);
+    const StaticResult r = solveStatic3D(p);
+    ASSERT_TRUE(r.summary.converged) << U << ": " << r.summary.message;
+    const Material& m = p.materials[0];
+    const double R = 0.5 * p.environment.water_density * m.diameter * m.cdn * U * U / m.wet_weight;
+    const double phi = std::asin((-1.0 + std::sqrt(1.0 + 4.0 * R * R)) / (2.0 * R));
+    for (std::size_t j = 5; j + 5 < r.nodes.size(); ++j) {  // away from the moment-free ends
+      EXPECT_NEAR(r.nodes[j].angle, phi, kAngleTol) << "U " << U << " node " << j;
+      EXPECT_NEAR(r.nodes[j].tension, m.wet_weight * std::cos(phi) * r.nodes[j].s,
+                  1e-4 * m.wet_weight * r.nodes.back().s)
+          << "U " << U << " node " << j;
+      EXPECT_NEAR(r.nodes[j].y, 0.0, 1e-9);
+    }
+    EXPECT_LT(r.nodes.front().x, r.nodes.back().x);  // the cable trails behind the ship (+x tow)
+  }
+}
+
+namespace {
+/// The static towing equations without bending, integrated by RK4 from the body up in the frame
+/// of the tow point: F' = -g(F / |F|), r' = (1 + T / EA) F / |F|, F(0) = -(W + D(t)) (body).
+struct Shot {
+  Eigen::Vector3d top_force, end;  // F at the top, body position relative to the top
+};
+Shot shootTow(const Problem& p) {
+  using V = Eigen::Vector3d;
+  const Material& m = p.materials[0];
+  const Body& b = p.bodies[0];
+  const double rho = p.environment.water_density, U = p.top.tow_vx;
+  const V w(-U, 0.0, 0.0);
+  auto drag = [&](const V& t, double cdn, double cdt, double dn, double dt_area) {
+    const double wt = w.dot(t);
+    const V wn = w - wt * t;
+    return V(0.5 * rho * dn * cdn * wn.norm() * wn + 0.5 * rho * dt_area * cdt * std::abs(wt) * wt * t);
+  };
+  auto g = [&](const V& F) {
+    const V t = F.normalized();
+    return V(V(0, 0, -m.wet_weight) + drag(t, m.cdn, m.cdt, m.diameter, kPi * m.diameter));
+  };
+  V F(0, 0, 1), t(0, 0, 1);
+  const double A = 0.25 * kPi * b.diameter * b.diameter;
+  for (int k = 0; k < 50; ++k) {  // body balance with its tangent along the force
+    F = -(V(0, 0, -b.wet_weight) + drag(t, b.cdn, b.cdt, A, A));
+    t = F.normalized();
+  }
+  V r(0, 0, 0);
+  const int steps = 2000;
+  const double h = p.segments[0].length / steps;
+  for (int k = 0; k < steps; ++k) {
+    auto dr = [&](const V& f) { return V((1.0 + f.norm() / m.EA) * f.normalized()); };
+    const V k1 = -g(F), l1 = dr(F);
+    const V k2 = -g(F + 0.5 * h * k1), l2 = dr(F + 0.5 * h * k1);
+    const V k3 = -g(F + 0.5 * h * k2), l3 = dr(F + 0.5 * h * k2);
+    const V k4 = -g(F + h * k3), l4 = dr(F + h * k3);
+    F += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+    r += h / 6.0 * (l1 + 2 * l2 + 2 * l3 + l4);
+  }
+  return {F, -r};
+}
+}  // namespace
+
+TEST(Towing, SteadyTowWithBodyMatchesAnIndependentIntegration) {
+  Problem p = towedLine(2.0, true);
+  p.materials[0].cdt = 0.02;  // tangential drag too
+  const StaticResult r = solveStatic3D(p);
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  const Shot s = shootTow(p);
+  const double T = s.top_force.norm();
+  EXPECT_NEAR(r.top_force_x, s.top_force.x(), kShootRelTol * T);
+  EXPECT_NEAR(r.top_force_z, s.top_force.z(), kShootRelTol * T);
+  EXPECT_NEAR(r.nodes.front().x - r.nodes.back().x, s.end.x(), kShootPosTol);
+  EXPECT_NEAR(r.nodes.front().z - r.nodes.back().z, s.end.z(), kShootPosTol);
+  RecordProperty("body_depth_m", std::to_string(-r.nodes.front().z));
+}
+
+TEST(Towing, FreeEndNeedsTheThreeDimensionalModelAndATowPoint) {
+  Problem p = towedLine(1.0, false);
+  p.formulation = Formulation::TwoD;
+  EXPECT_NE(p.validate().find("model: 3d"), std::string::npos) << p.validate();
+  p = towedLine(1.0, false);
+  p.top.type = TopBoundary::Type::Force;
+  EXPECT_NE(p.validate().find("top.position"), std::string::npos) << p.validate();
+  p = towedLine(1.0, false);
+  p.lower_end = Problem::LowerEnd::Anchor;
+  EXPECT_NE(p.validate().find("top.tow_velocity"), std::string::npos) << p.validate();
+}
+
+TEST(Towing, ProblemFileKeys) {
+  const std::string text = R"(model: 3d
+environment: {depth: 1000}
+materials:
+  tow: {EA: 1.0e8, EI: 1.0, GJ: 1.0, mass: 2.4, added_mass: 1.3, wet_weight: 2.3, diameter: 0.041, cdn: 2.0, cdt: 0.015}
+bodies:
+  fish: {mass: 100, wet_weight: 500, diameter: 0.5, cdn: 1.0, cdt: 1.0}
+line:
+  - {material: tow, length: 100, spacing: 2}
+free_end: {body: fish}
+top:
+  position: {x: 0, y: 0, z: 0}
+  tow_velocity: {x: 3.0, y: 0}
+)";
+  const Problem p = loadProblemFromString(text);
+  EXPECT_EQ(p.lower_end, Problem::LowerEnd::Free);
+  EXPECT_EQ(p.end_body, 0u);
+  EXPECT_DOUBLE_EQ(p.top.tow_vx, 3.0);
+  const StaticResult r = solveStatic3D(p);
+  EXPECT_TRUE(r.summary.converged) << r.summary.message;
+  std::string both = text;
+  both.insert(both.find("free_end"), "anchor: {x: 0}\n");
+  try {
+    loadProblemFromString(both);
+    ADD_FAILURE() << "anchor and free_end together loaded";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("free_end"), std::string::npos) << e.what();
+  }
+}
