@@ -21,8 +21,14 @@ using namespace eq3d;
 namespace {
 using AD32 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
 using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
+// Rows at the ends: anchored, 10 at the anchor and 6 at the top; with a free lower end (towing),
+// 7 at the end (the body's force balance replaces rest and position) and 9 at the top (the tow
+// point's position as well as its velocity).
 constexpr int kAnchorRows = 10;
 constexpr int kTopRows = 6;
+constexpr int kFreeEndRows = 7;
+constexpr int kTowTopRows = 9;
+constexpr int kMaxEndRows = 10;
 const char* const kVarNames[N] = {"eps", "S2", "S3", "u1", "u2", "u3", "Omega1", "Omega2",
                                   "Omega3", "q0", "q1", "q2", "q3", "x", "y", "z"};
 
@@ -61,6 +67,7 @@ struct DynamicSolver3D::Impl {
   Eigen::VectorXd Y, Yd;        ///< accepted state and rate at time t
   std::vector<Water> water;     ///< water velocity at each node at time t
   Eigen::VectorXd S;            ///< spatial rows 0-5 of each interval at time t
+  double S_end[3] = {0.0, 0.0, 0.0};  ///< free lower end: spatial part of the body balance at time t
   double chi[N];
   Totals totals;
 
@@ -107,6 +114,10 @@ struct DynamicSolver3D::Impl {
       for (int q = 0; q < rows; ++q) out[kInertiaRows * j + q] = r[q];
     }
   }
+
+  void endRows(const Eigen::VectorXd& y, const std::vector<Water>& w) {
+    if (problem.lower_end == Problem::LowerEnd::Free) freeEndForces(problem, mat(0), y.data(), w[0], S_end);
+  }
 };
 
 // --- One time step as a Newton system ------------------------------------------------------------
@@ -116,11 +127,14 @@ struct DynamicSolver3D::Impl {
 class DynamicStepSystem3D : public NewtonSystem {
  public:
   DynamicStepSystem3D(const DynamicSolver3D::Impl& im, double t_new, double dt, const TopState& top)
-      : im_(im), t_(t_new), dt_(dt), top_(top) {}
+      : im_(im), t_(t_new), dt_(dt), top_(top),
+        towed_(im.problem.lower_end == Problem::LowerEnd::Free),
+        end_rows_(towed_ ? kFreeEndRows : kAnchorRows), top_rows_(towed_ ? kTowTopRows : kTopRows) {}
 
   int size() const override { return N * im_.nodes(); }
-  int lowerBandwidth() const override { return 25; }
-  int upperBandwidth() const override { return 21; }
+  // Interval j's rows start at end_rows_ + N j and touch nodes j, j + 1.
+  int lowerBandwidth() const override { return end_rows_ + N - 1; }
+  int upperBandwidth() const override { return 2 * N - 1 - end_rows_; }
   double scale(int i) const override { return im_.chi[i % N]; }
   std::string describe(int i) const override {
     const std::size_t j = static_cast<std::size_t>(i / N);
@@ -156,27 +170,44 @@ class DynamicStepSystem3D : public NewtonSystem {
     const Eigen::VectorXd& Yp = im_.Y;
     const Eigen::VectorXd& Ydp = im_.Yd;
 
-    // Anchor (eq. 34 in 3-D): at rest, fixed, bending-moment free, unit frame, twist held.
+    // Anchor (eq. 34 in 3-D): at rest, fixed, bending-moment free, unit frame, twist held. A free
+    // lower end (towing): the end body's force balance with its inertia, weighted in time like
+    // the junction force rows, then the same moment, frame and twist rows.
     {
-      AD16 y[N], r[kAnchorRows];
+      AD16 y[N], r[kMaxEndRows];
       for (int k = 0; k < N; ++k) y[k] = AD16(Yv[k], N, k);
       const double qp[4] = {Yp[Q0], Yp[Q1], Yp[Q2], Yp[Q3]};
-      r[0] = y[U1];
-      r[1] = y[U2];
-      r[2] = y[U3];
-      r[3] = y[X] - im_.problem.anchor_x;
-      r[4] = y[eq3d::Y] - im_.problem.anchor_y;
-      r[5] = y[Z] - im_.problem.anchor_z;
-      r[6] = y[O2];
-      r[7] = y[O3];
-      r[8] = normDefect(y);
-      r[9] = twistGauge(qp, y);
-      scatter(r, kAnchorRows, 0, 0, N, R, J);
+      int k0 = 0;
+      if (towed_) {
+        AD16 yd[N], yp[N], in1[3], in0[3];
+        for (int k = 0; k < N; ++k) {
+          yd[k] = (1.0 - am) * (c1 * (y[k] - Yp[k]) - c0 * Ydp[k]) + am * Ydp[k];
+          yp[k] = constant<AD16>(Yp[k]);
+        }
+        freeEndForces(im_.problem, im_.mat(0), y, water_[0], r);
+        freeEndInertia(im_.problem, y, yd, in1);
+        freeEndInertia(im_.problem, yp, yd, in0);
+        for (int q = 0; q < 3; ++q) r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S_end[q]);
+        k0 = 3;
+      } else {
+        r[0] = y[U1];
+        r[1] = y[U2];
+        r[2] = y[U3];
+        r[3] = y[X] - im_.problem.anchor_x;
+        r[4] = y[eq3d::Y] - im_.problem.anchor_y;
+        r[5] = y[Z] - im_.problem.anchor_z;
+        k0 = 6;
+      }
+      r[k0] = y[O2];
+      r[k0 + 1] = y[O3];
+      r[k0 + 2] = normDefect(y);
+      r[k0 + 3] = twistGauge(qp, y);
+      scatter(r, end_rows_, 0, 0, N, R, J);
     }
 
     for (int j = 0; j + 1 < n; ++j) {
       const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
-      const int row = kAnchorRows + N * j;
+      const int row = end_rows_ + N * j;
       AD32 y[2 * N], ydw[2 * N], yp[2 * N];
       for (int k = 0; k < 2 * N; ++k) {
         const int idx = N * j + k;
@@ -210,9 +241,10 @@ class DynamicStepSystem3D : public NewtonSystem {
       scatter(r, N, row, N * j, 2 * N, R, J);
     }
 
-    // Top: moment free, plus prescribed velocity (eq. 34), velocity with position feedback, or force.
+    // Top: moment free, plus prescribed velocity (eq. 34), velocity with position feedback, or
+    // force; a tow point (free lower end) also has its position prescribed.
     const int top = N * (n - 1);
-    AD16 y[N], r[kTopRows];
+    AD16 y[N], r[kTowTopRows];
     for (int k = 0; k < N; ++k) y[k] = AD16(Yv[top + k], N, k);
     r[0] = y[O1];
     r[1] = y[O2];
@@ -230,11 +262,14 @@ class DynamicStepSystem3D : public NewtonSystem {
       const double x[3] = {top_.x, top_.y, top_.z};
       // Position feedback over a few base steps, as in 2-D (docs/method.md, "Top boundary").
       constexpr double kPositionFeedbackSteps = 5.0;
-      const double kappa =
-          im_.opt.top_motion.prescribe_position ? 1.0 / (kPositionFeedbackSteps * im_.opt.dt) : 0.0;
+      const double kappa = im_.opt.top_motion.prescribe_position && !towed_
+                               ? 1.0 / (kPositionFeedbackSteps * im_.opt.dt)
+                               : 0.0;
       for (int i = 0; i < 3; ++i) r[3 + i] = V[i] - v[i] - kappa * (x[i] - y[X + i]);
+      if (towed_)
+        for (int i = 0; i < 3; ++i) r[6 + i] = y[X + i] - x[i];
     }
-    scatter(r, kTopRows, kAnchorRows + N * (n - 1), top, N, R, J);
+    scatter(r, top_rows_, end_rows_ + N * (n - 1), top, N, R, J);
   }
 
   const std::vector<Water>& water() const { return water_; }
@@ -243,6 +278,8 @@ class DynamicStepSystem3D : public NewtonSystem {
   const DynamicSolver3D::Impl& im_;
   double t_, dt_;
   TopState top_;
+  bool towed_;
+  int end_rows_, top_rows_;
   mutable std::vector<Water> water_;
 };
 
@@ -256,7 +293,26 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   im.opt = problem.dynamics;
   im.ga = problem.dynamics.scheme;
   im.mesh = buildMesh(problem);
-  StaticState3D st = solveStatic3DOnMesh(problem, im.mesh, problem.static_options);
+  // A towed line starts from the steady tow at the tow point's initial velocity (section 7.1:
+  // "steady tow, then the manoeuvre"): statics in the frame moving with it, then every node given
+  // that velocity, which is a steady state of the dynamic equations.
+  const bool towed = problem.lower_end == Problem::LowerEnd::Free;
+  Problem start = problem;
+  double V0[3] = {0.0, 0.0, 0.0};
+  if (towed) {
+    const TopState s0 = makeTopMotion(problem.dynamics.top_motion, problem.top.x, problem.top.y, problem.top.z,
+                                      nullptr)(0.0);
+    constexpr double kVelocityMismatch = 1e-6;  // [m/s]
+    const bool given = problem.top.tow_vx != 0.0 || problem.top.tow_vy != 0.0;
+    if (given && std::hypot(problem.top.tow_vx - s0.vx, problem.top.tow_vy - s0.vy) > kVelocityMismatch)
+      throw std::invalid_argument("top.tow_velocity = (" + std::to_string(problem.top.tow_vx) + ", " +
+                                  std::to_string(problem.top.tow_vy) + ") m/s: differs from the top motion's velocity at "
+                                  "t = 0, (" + std::to_string(s0.vx) + ", " + std::to_string(s0.vy) +
+                                  ") m/s; leave it out to start from the motion's");
+    start.top.tow_vx = V0[0] = s0.vx;
+    start.top.tow_vy = V0[1] = s0.vy;
+  }
+  StaticState3D st = solveStatic3DOnMesh(start, im.mesh, start.static_options);
   if (st.result.summary.converged && problem.dynamics.adaptive_mesh) {
     // Section 3: redistribute the nodes by eq. 22. The curvature fed to eq. 21 is the magnitude
     // of the bending curvature (Omega2, Omega3) with the sign of Omega3, which is the 2-D
@@ -264,8 +320,8 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
     StaticResult shape = st.result;
     for (auto& ns : shape.nodes)
       ns.curvature = std::copysign(std::hypot(ns.curvature, ns.curvature_b), ns.curvature);
-    im.mesh = buildAdaptiveMesh(problem, im.mesh, shape, problem.dynamics.mesh_weight);
-    st = solveStatic3DOnMesh(problem, im.mesh, problem.static_options);
+    im.mesh = buildAdaptiveMesh(start, im.mesh, shape, problem.dynamics.mesh_weight);
+    st = solveStatic3DOnMesh(start, im.mesh, start.static_options);
   }
   if (!st.result.summary.converged)
     throw std::runtime_error("the 3-D static solution that starts the dynamic run did not converge: " +
@@ -283,9 +339,18 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
 
   im.t = 0.0;
   im.Y = st.Y;
+  if (towed) {
+    for (int j = 0; j < im.nodes(); ++j) {
+      double* y = im.Y.data() + N * j;
+      double R[9];
+      quat::matrix(y + Q0, R);
+      quat::toLocal(R, V0, y + U1);
+    }
+  }
   im.Yd = Eigen::VectorXd::Zero(im.Y.size());
   im.waterField(im.Y, 0.0, im.water);
   im.spatialRows(im.Y, im.water, im.S);
+  im.endRows(im.Y, im.water);
 
   // Error scales chi_m of eq. 39, as in 2-D.
   double Tc = 1.0, stiffest = 0.0;
@@ -345,6 +410,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.t = t_new;
   im.water = sys.water();
   im.spatialRows(im.Y, im.water, im.S);
+  im.endRows(im.Y, im.water);
   ++rep.steps;
   ++im.totals.steps;
   rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
