@@ -32,6 +32,11 @@ constexpr int kMaxEndRows = 10;
 const char* const kVarNames[N] = {"eps", "S2", "S3", "u1", "u2", "u3", "Omega1", "Omega2",
                                   "Omega3", "q0", "q1", "q2", "q3", "x", "y", "z"};
 
+/// Rows into R (and, for AD scalars, their derivatives into J at column col0 onward).
+inline void scatter(const double* r, int rows, int row0, int, int, Eigen::VectorXd& R, BandedMatrix*) {
+  for (int q = 0; q < rows; ++q) R[row0 + q] = r[q];
+}
+
 template <class AD>
 void scatter(const AD* r, int rows, int row0, int col0, int cols, Eigen::VectorXd& R, BandedMatrix* J) {
   for (int q = 0; q < rows; ++q) {
@@ -49,6 +54,20 @@ AD constant(double v) {
   AD a(v);
   a.derivatives().setZero();
   return a;
+}
+template <>
+double constant<double>(double v) {
+  return v;
+}
+
+/// Unknown k of `size` (an AD variable), or its plain value for double.
+template <class S>
+S variable(double v, int size, int k) {
+  return S(v, size, k);
+}
+template <>
+double variable<double>(double v, int, int) {
+  return v;
 }
 }  // namespace
 
@@ -159,7 +178,17 @@ class DynamicStepSystem3D : public NewtonSystem {
     }
   }
 
+  /// The residual alone is evaluated in double (for Newton iterations that reuse a Jacobian);
+  /// with J, in AutoDiff scalars (AD16 for the end rows, AD32 for the intervals).
   void evaluate(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) override {
+    if (J)
+      evaluateAs<AD16, AD32>(Yv, R, J);
+    else
+      evaluateAs<double, double>(Yv, R, nullptr);
+  }
+
+  template <class S16, class S32>
+  void evaluateAs(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) {
     const int n = im_.nodes();
     const GeneralizedAlpha& ga = im_.ga;
     const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
@@ -174,15 +203,15 @@ class DynamicStepSystem3D : public NewtonSystem {
     // lower end (towing): the end body's force balance with its inertia, weighted in time like
     // the junction force rows, then the same moment, frame and twist rows.
     {
-      AD16 y[N], r[kMaxEndRows];
-      for (int k = 0; k < N; ++k) y[k] = AD16(Yv[k], N, k);
+      S16 y[N], r[kMaxEndRows];
+      for (int k = 0; k < N; ++k) y[k] = variable<S16>(Yv[k], N, k);
       const double qp[4] = {Yp[Q0], Yp[Q1], Yp[Q2], Yp[Q3]};
       int k0 = 0;
       if (towed_) {
-        AD16 yd[N], yp[N], in1[3], in0[3];
+        S16 yd[N], yp[N], in1[3], in0[3];
         for (int k = 0; k < N; ++k) {
           yd[k] = (1.0 - am) * (c1 * (y[k] - Yp[k]) - c0 * Ydp[k]) + am * Ydp[k];
-          yp[k] = constant<AD16>(Yp[k]);
+          yp[k] = constant<S16>(Yp[k]);
         }
         freeEndForces(im_.problem, im_.mat(0), y, water_[0], r);
         freeEndInertia(im_.problem, y, yd, in1);
@@ -208,19 +237,19 @@ class DynamicStepSystem3D : public NewtonSystem {
     for (int j = 0; j + 1 < n; ++j) {
       const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
       const int row = end_rows_ + N * j;
-      AD32 y[2 * N], ydw[2 * N], yp[2 * N];
+      S32 y[2 * N], ydw[2 * N], yp[2 * N];
       for (int k = 0; k < 2 * N; ++k) {
         const int idx = N * j + k;
-        y[k] = AD32(Yv[idx], 2 * N, k);
-        const AD32 yd = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
+        y[k] = variable<S32>(Yv[idx], 2 * N, k);
+        const S32 yd = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
         ydw[k] = (1.0 - am) * yd + am * Ydp[idx];  // weighted rate of eq. 30
-        yp[k] = constant<AD32>(Yp[idx]);
+        yp[k] = constant<S32>(Yp[idx]);
       }
       const Water& wa = water_[static_cast<std::size_t>(j)];
       const Water& wb = water_[static_cast<std::size_t>(j) + 1];
       const Water& wpa = im_.water[static_cast<std::size_t>(j)];
       const Water& wpb = im_.water[static_cast<std::size_t>(j) + 1];
-      AD32 r[N], in1[kInertiaRows], in0[kInertiaRows];
+      S32 r[N], in1[kInertiaRows], in0[kInertiaRows];
       int weighted;
       if (iv.h > 0.0) {
         const Material& m = im_.problem.materials[iv.material];
@@ -244,19 +273,19 @@ class DynamicStepSystem3D : public NewtonSystem {
     // Top: moment free, plus prescribed velocity (eq. 34), velocity with position feedback, or
     // force; a tow point (free lower end) also has its position prescribed.
     const int top = N * (n - 1);
-    AD16 y[N], r[kTowTopRows];
-    for (int k = 0; k < N; ++k) y[k] = AD16(Yv[top + k], N, k);
+    S16 y[N], r[kTowTopRows];
+    for (int k = 0; k < N; ++k) y[k] = variable<S16>(Yv[top + k], N, k);
     r[0] = y[O1];
     r[1] = y[O2];
     r[2] = y[O3];
     if (top_.force) {
-      AD16 F[3];
+      S16 F[3];
       internalForce(im_.mat(n - 1), y, F);
       r[3] = F[0] - top_.fx;
       r[4] = F[1] - top_.fy;
       r[5] = F[2] - top_.fz;
     } else {
-      AD16 V[3];
+      S16 V[3];
       globalVelocity(y, V);
       const double v[3] = {top_.vx, top_.vy, top_.vz};
       const double x[3] = {top_.x, top_.y, top_.z};
