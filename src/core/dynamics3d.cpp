@@ -87,6 +87,7 @@ struct DynamicSolver3D::Impl {
   std::vector<Water> water;     ///< water velocity at each node at time t
   Eigen::VectorXd S;            ///< spatial rows 0-5 of each interval at time t
   double S_end[3] = {0.0, 0.0, 0.0};  ///< free lower end: spatial part of the body balance at time t
+  double S_top[3] = {0.0, 0.0, 0.0};  ///< subsurface top body: spatial part of its balance at time t
   double chi[N];
   Totals totals;
 
@@ -134,8 +135,15 @@ struct DynamicSolver3D::Impl {
     }
   }
 
-  void endRows(const Eigen::VectorXd& y, const std::vector<Water>& w) {
+  /// The parts of the end rows that eq. 30 weights in time, at state y and time `time`.
+  void endRows(const Eigen::VectorXd& y, const std::vector<Water>& w, double time) {
     if (problem.lower_end == Problem::LowerEnd::Free) freeEndForces(problem, mat(0), y.data(), w[0], S_end);
+    if (problem.top.type == TopBoundary::Type::Body) {
+      const TopState in = top(time);
+      const double extra[3] = {in.force ? in.fx : 0.0, in.force ? in.fy : 0.0, in.force ? in.fz : 0.0};
+      const int n = nodes();
+      topBodyForces(problem, mat(n - 1), y.data() + N * (n - 1), w[static_cast<std::size_t>(n - 1)], extra, S_top);
+    }
   }
 };
 
@@ -278,7 +286,20 @@ class DynamicStepSystem3D : public NewtonSystem {
     r[0] = y[O1];
     r[1] = y[O2];
     r[2] = y[O3];
-    if (top_.force) {
+    if (im_.problem.top.type == TopBoundary::Type::Body) {
+      // Subsurface buoy: its force balance with inertia, weighted in time like the junction
+      // rows; a force table adds an external force on the body.
+      S16 yd[N], yp[N], sp[3], in1[3], in0[3];
+      for (int k = 0; k < N; ++k) {
+        yd[k] = (1.0 - am) * (c1 * (y[k] - Yp[top + k]) - c0 * Ydp[top + k]) + am * Ydp[top + k];
+        yp[k] = constant<S16>(Yp[top + k]);
+      }
+      const double extra[3] = {top_.force ? top_.fx : 0.0, top_.force ? top_.fy : 0.0, top_.force ? top_.fz : 0.0};
+      topBodyForces(im_.problem, im_.mat(n - 1), y, water_[static_cast<std::size_t>(n - 1)], extra, sp);
+      topBodyInertia(im_.problem, y, yd, in1);
+      topBodyInertia(im_.problem, yp, yd, in0);
+      for (int i = 0; i < 3; ++i) r[3 + i] = (1.0 - ak) * (in1[i] + sp[i]) + ak * (in0[i] + im_.S_top[i]);
+    } else if (top_.force) {
       S16 F[3];
       internalForce(im_.mat(n - 1), y, F);
       r[3] = F[0] - top_.fx;
@@ -379,7 +400,7 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   im.Yd = Eigen::VectorXd::Zero(im.Y.size());
   im.waterField(im.Y, 0.0, im.water);
   im.spatialRows(im.Y, im.water, im.S);
-  im.endRows(im.Y, im.water);
+  im.endRows(im.Y, im.water, 0.0);
 
   // Error scales chi_m of eq. 39, as in 2-D.
   double Tc = 1.0, stiffest = 0.0;
@@ -439,7 +460,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.t = t_new;
   im.water = sys.water();
   im.spatialRows(im.Y, im.water, im.S);
-  im.endRows(im.Y, im.water);
+  im.endRows(im.Y, im.water, im.t);
   ++rep.steps;
   ++im.totals.steps;
   rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;

@@ -153,6 +153,13 @@ Shot catenaryShot(const Problem& problem, const Mesh& mesh) {
     }
     case TopBoundary::Type::Buoy:
       return shootToBuoy(problem, mesh);
+    case TopBoundary::Type::Body: {
+      // The body's net buoyancy pulls the top up (drag left to Newton).
+      const double up = problem.top.body < problem.bodies.size() ? -problem.bodies[problem.top.body].wet_weight : 0.0;
+      Shot s = shootFromAnchor(problem, mesh, 0.0, up - totalWetWeight(problem, mesh));
+      s.ok = true;
+      return s;
+    }
   }
   return {};
 }
@@ -193,6 +200,9 @@ Eigen::VectorXd straightLineState(const Problem& problem, const Mesh& mesh) {
     case TopBoundary::Type::Buoy:
       dz = -problem.anchor_z;
       dx = std::sqrt(std::max(L * L - dz * dz, 0.0));
+      break;
+    case TopBoundary::Type::Body:
+      dz = 1.0;  // straight up
       break;
   }
   const double phi = std::atan2(dx, dz);

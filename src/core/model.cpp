@@ -399,6 +399,16 @@ std::string Problem::validate() const {
     case TopBoundary::Type::Buoy:
       if (!(e = validateBuoy(top.buoy)).empty()) return e;
       break;
+    case TopBoundary::Type::Body:
+      if (top.body >= bodies.size()) return "top.body index " + std::to_string(top.body) + ": unknown body";
+      if (formulation != Formulation::ThreeD)
+        return "top.body: a subsurface buoy at the top needs model: 3d";
+      if (lower_end != LowerEnd::Anchor)
+        return "top.body with free_end: a line free at both ends (a drifting system) is not supported yet";
+      if (dynamics.top_motion.type != TopMotion::Type::Hold && dynamics.top_motion.type != TopMotion::Type::ForceTable)
+        return "dynamics.top_motion: with top.body the top is free; only type hold (no extra force) or force_table "
+               "(an extra force on the body) apply";
+      break;
   }
   if (!(e = static_options.validate()).empty()) return e;
   return dynamics.validate();

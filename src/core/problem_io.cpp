@@ -195,10 +195,11 @@ std::size_t lookup(const Item& it, const std::map<std::string, std::size_t>& tab
                      lineSuffix(it.mark));
 }
 
-void readTop(const Item& it, TopBoundary& top) {
-  const Map m(it, {"position", "force", "buoy", "tow_velocity"});
+void readTop(const Item& it, TopBoundary& top, const std::map<std::string, std::size_t>& body_index,
+             const std::vector<std::string>& body_names) {
+  const Map m(it, {"position", "force", "buoy", "body", "tow_velocity"});
   std::vector<std::string> given;
-  for (const char* k : {"position", "force", "buoy"})
+  for (const char* k : {"position", "force", "buoy", "body"})
     if (m.has(k)) given.push_back(k);
   if (m.has("tow_velocity") && !m.has("position"))
     m.at("tow_velocity").fail("only with top.position (the tow point of a line with a free lower end)");
@@ -206,8 +207,12 @@ void readTop(const Item& it, TopBoundary& top) {
     throw ProblemError("top: " +
                        (given.empty() ? std::string("no boundary condition given")
                                       : "has " + joinList(given) + " at once") +
-                       "; give exactly one of position, force, buoy" + lineSuffix(it.mark));
-  if (m.has("position")) {
+                       "; give exactly one of position, force, buoy, body" + lineSuffix(it.mark));
+  if (m.has("body")) {
+    // A subsurface buoy: the named body, held up by nothing but the line (3-D model).
+    top.type = TopBoundary::Type::Body;
+    top.body = lookup(m.at("body"), body_index, body_names, "body");
+  } else if (m.has("position")) {
     const Map p(m.at("position"), {"x", "y", "z"});
     top.type = TopBoundary::Type::Position;
     top.x = p.number("x");
@@ -461,7 +466,7 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
       if (f.has("body")) pb.end_body = lookup(f.at("body"), body_index, body_names, "body");
     }
   }
-  readTop(top.required("top"), pb.top);
+  readTop(top.required("top"), pb.top, body_index, body_names);
   if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), pb.static_options);
   if (presentAndNotNull(top, "dynamics")) readDynamics(top.at("dynamics"), pb.dynamics, pb.totalLength());
 

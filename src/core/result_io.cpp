@@ -74,6 +74,7 @@ const char* topTypeName(const TopBoundary& top) {
     case TopBoundary::Type::Force: return "force";
     case TopBoundary::Type::Position: return "position";
     case TopBoundary::Type::Buoy: return "buoy";
+    case TopBoundary::Type::Body: return "body";
   }
   return "unknown";
 }

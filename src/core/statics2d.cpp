@@ -121,6 +121,16 @@ void StaticSystem2D::evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, Band
       r[2] = Fz - Bz;
       break;
     }
+    case TopBoundary::Type::Body: {
+      // A submerged body at the top: the line's pull balances its net buoyancy and drag.
+      // (Problem::validate() keeps it to the 3-D model for now; the row is the 2-D form.)
+      AD6 Fx, Fz, Pt, Pn;
+      internalForce(mn, y, Fx, Fz);
+      bodyLoad(problem_.environment, problem_.bodies[tb.body], y[PHI], y[Z], Pt, Pn);
+      r[1] = Fx - (Pt * sin(y[PHI]) + Pn * cos(y[PHI]));
+      r[2] = Fz - (Pt * cos(y[PHI]) - Pn * sin(y[PHI]));
+      break;
+    }
   }
   for (int q = 0; q < 3; ++q) {
     R[row + q] = r[q].value();

@@ -170,6 +170,11 @@ void StaticSystem3D::evaluate(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, Ban
       for (int i = 0; i < 3; ++i) r[3 + i] = F[i] - B[i];
       break;
     }
+    case TopBoundary::Type::Body: {
+      const double none[3] = {0.0, 0.0, 0.0};
+      topBodyForces(problem_, mn, y, water[static_cast<std::size_t>(n - 1)], none, r + 3);
+      break;
+    }
   }
   scatter(r, kTopRows, kAnchorRows + N * (n - 1), top, N, R, J);
 }
@@ -248,6 +253,18 @@ Problem planarProjection(const Problem& p, double psi) {
       q.top.fx = p.top.fx * c + p.top.fy * s;
       q.top.fy = 0.0;
     }
+  }
+  if (p.top.type == TopBoundary::Type::Body) {
+    // A subsurface buoy: for the guess, a force top of its net buoyancy and its drag in the
+    // current at the depth it would float at (anchor plus line length, at most the surface).
+    const Body& b = p.bodies[p.top.body];
+    double ux, uy;
+    p.environment.currentAt(std::min(0.0, p.anchor_z + p.totalLength()), ux, uy);
+    const double U = ux * c + uy * s;
+    q.top.type = TopBoundary::Type::Force;
+    q.top.fx = 0.5 * p.environment.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter * b.cdn * U * std::abs(U);
+    q.top.fz = -b.wet_weight;
+    q.formulation = Formulation::TwoD;
   }
   q.top.y = 0.0;
   q.top.fy = 0.0;

@@ -304,6 +304,33 @@ void freeEndForces(const Problem& p, const Material& m0, const S* Y0, const Wate
   for (int i = 0; i < 3; ++i) R[i] = F[i] + P[i];
 }
 
+/// Subsurface buoy at the top (TopBoundary::Body): the spatial part of its force balance,
+/// F_n - P = 0 [N] (problem frame): the force it applies to the line's top end, F_n, equals its
+/// wet weight (negative: net buoyancy) and drag P, tangent e1 of the top node. `extra` is an
+/// external force on the body [N] (0 but for a force table).
+template <class S>
+void topBodyForces(const Problem& p, const Material& mn, const S* Yn, const Water& w, const double* extra, S* R) {
+  S F[3], P[3] = {zeroLike(Yn[EPS]), zeroLike(Yn[EPS]), zeroLike(Yn[EPS])}, Rm[9], r[3];
+  internalForce(mn, Yn, F);
+  quat::matrix(Yn + Q0, Rm);
+  relativeWater(Yn, Rm, w, r);
+  const S t[3] = {Rm[0], Rm[3], Rm[6]};
+  addBodyLoad(p.environment, p.bodies[p.top.body], t, r, P);
+  for (int i = 0; i < 3; ++i) R[i] = F[i] - P[i] - extra[i];
+}
+
+/// Inertia of the top body: plus its mass and added mass times the top node's acceleration [N]
+/// (the rows of topBodyForces: F_n - P + M a = 0).
+template <class S>
+void topBodyInertia(const Problem& p, const S* Yn, const S* Ydn, S* R) {
+  const double mass = p.bodies[p.top.body].mass + p.bodies[p.top.body].added_mass;
+  S Rm[9], a[3], ag[3];
+  quat::matrix(Yn + Q0, Rm);
+  acceleration(Yn, Ydn, a);
+  quat::toGlobal(Rm, a, ag);
+  for (int i = 0; i < 3; ++i) R[i] = mass * ag[i];
+}
+
 /// Inertia of the end body (rows of freeEndForces): minus its mass and added mass times node 0's
 /// acceleration [N].
 template <class S>

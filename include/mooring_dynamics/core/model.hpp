@@ -163,7 +163,9 @@ struct SurfaceBuoy {
 
 /// What holds the top end of the line in statics.
 struct TopBoundary {
-  enum class Type { Force, Position, Buoy };
+  /// Body: a subsurface buoy (or any point body) at the top, held by nothing but the line: its
+  /// net buoyancy, drag and (in dynamics) inertia balance the line's pull (3-D model).
+  enum class Type { Force, Position, Buoy, Body };
   Type type = Type::Position;
   double fx = 0.0, fz = 0.0;   ///< Force: force applied to the line's top end by the platform [N]
   double fy = 0.0;             ///< Force, y component [N] (3-D model only; 0 in 2-D)
@@ -174,6 +176,7 @@ struct TopBoundary {
   /// velocity relative to the top (current minus this velocity). YAML `top.tow_velocity`.
   double tow_vx = 0.0, tow_vy = 0.0;
   SurfaceBuoy buoy;            ///< Buoy: the buoy that floats at the top
+  std::size_t body = static_cast<std::size_t>(-1);  ///< Body: index into Problem::bodies
 };
 
 /// Numerical options of the static solver (Newton relaxation, paper section 6).
