@@ -1,6 +1,7 @@
 // ros_latency: latency and throughput of the lockstep cable node (run by bench/ros_latency).
 //
-// Publishes a heaving fairlead (PoseStamped about the problem's static top, stamps on a simulated
+// Publishes a heaving fairlead (PoseStamped about the problem's static top, (x, y, z) for model: 3d
+// and (x, z) for model: 2d; stamps on a simulated
 // clock) to <~node>/top_pose and times, on the wall clock, each publish -> the CableState with the
 // same stamp (received by a separate spinner thread).
 //  1. latency: ~latency_samples samples at ~latency_rate Hz (stamps 1/rate apart): median, p99, max;
@@ -28,7 +29,7 @@ namespace {
 
 struct Prober {
   std::string node;
-  double x0 = 0, z0 = 0, heave = 0.5, period = 8.0;
+  double x0 = 0, y0 = 0, z0 = 0, heave = 0.5, period = 8.0;
   double sim_t = 0.0;                   // simulated time of the next sample [s]
   const ros::Time epoch{1000.0};
   ros::Publisher pub;
@@ -50,6 +51,7 @@ struct Prober {
     p.header.stamp = epoch + ros::Duration(sim_t);
     p.header.frame_id = "world";
     p.pose.position.x = x0;
+    p.pose.position.y = y0;
     p.pose.position.z = z0 + heave * std::sin(2.0 * M_PI * sim_t / period) *
                                  mooring_dynamics::ros_bridge::rampFactor(sim_t, period);
     p.pose.orientation.w = 1.0;
@@ -108,6 +110,7 @@ int run() {
   const auto problem = mooring_dynamics::core::loadProblemFromFile(problem_file);
   const auto top = mooring_dynamics::ros_bridge::staticTop(problem);
   pr.x0 = top.x;
+  pr.y0 = top.y;
   pr.z0 = top.z;
 
   pr.pub = nh.advertise<geometry_msgs::PoseStamped>(pr.node + "/top_pose", 10000);

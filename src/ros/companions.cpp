@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "mooring_dynamics/core/solvers.hpp"
 #include "mooring_dynamics/core/statics2d.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 
@@ -17,13 +18,15 @@ constexpr double kSecondPhase = 1.1;       // [rad]
 }  // namespace
 
 StaticTop staticTop(const core::Problem& problem) {
-  const core::StaticResult r = core::solveStatic(problem);
+  const core::StaticResult r = core::solveStaticModel(problem);
   if (!r.summary.converged || r.nodes.empty())
     throw std::runtime_error("the statics of \"" + problem.name + "\" did not converge: " + r.summary.message);
   StaticTop t;
   t.x = r.nodes.back().x;
+  t.y = r.nodes.back().y;
   t.z = r.nodes.back().z;
   t.fx = -r.top_force_x;
+  t.fy = -r.top_force_y;
   t.fz = -r.top_force_z;
   return t;
 }

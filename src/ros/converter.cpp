@@ -99,53 +99,63 @@ void toFailureResponse(const std::string& message, SolveStatic::Response& res) {
 
 namespace {
 
-/// Empty when the 3 components are usable as an x-z plane vector, else the error.
-std::string checkPlanar(const std::string& field, double x, double y, double z, const char* what) {
+/// Empty when the 3 components are usable as a top position / force for the model, else the error.
+std::string checkVector(const std::string& field, double x, double y, double z, const char* what,
+                        core::Formulation model) {
   const double c[3] = {x, y, z};
   const char* axis[3] = {"x", "y", "z"};
   for (int i = 0; i < 3; ++i)
     if (!std::isfinite(c[i])) return field + "." + axis[i] + " = " + formatNumber(c[i]) + ": must be finite";
-  if (y != 0.0)
-    return field + ".y = " + formatNumber(y) + ": must be 0; the static solver is 2-D and works in the vertical " +
-           "x-z plane of the frame (x east, z up) through the anchor, so the " + what +
-           " must lie in that plane";
+  if (model == core::Formulation::TwoD && y != 0.0)
+    return field + ".y = " + formatNumber(y) + ": must be 0; the problem is model: 2d, whose static solver works in " +
+           "the vertical x-z plane of the frame (x east, z up) through the anchor, so the " + what +
+           " must lie in that plane (model: 3d takes any y)";
   return "";
 }
 
 }  // namespace
 
-std::string describeTop(const core::TopBoundary& top) {
+std::string describeTop(const core::TopBoundary& top, core::Formulation model) {
+  const bool d3 = model == core::Formulation::ThreeD;
+  auto vec = [d3](double x, double y, double z) {
+    return d3 ? "(x, y, z) = (" + formatNumber(x) + ", " + formatNumber(y) + ", " + formatNumber(z) + ")"
+              : "(x, z) = (" + formatNumber(x) + ", " + formatNumber(z) + ")";
+  };
   switch (top.type) {
     case core::TopBoundary::Type::Position:
-      return "top position (x, z) = (" + formatNumber(top.x) + ", " + formatNumber(top.z) + ") m";
+      return "top position " + vec(top.x, top.y, top.z) + " m";
     case core::TopBoundary::Type::Force:
-      return "top force (x, z) = (" + formatNumber(top.fx) + ", " + formatNumber(top.fz) + ") N";
+      return "top force " + vec(top.fx, top.fy, top.fz) + " N";
     case core::TopBoundary::Type::Buoy:
       return "surface buoy at the top (diameter " + formatNumber(top.buoy.diameter) + " m)";
   }
   return "unknown top boundary";
 }
 
-TopBoundaryRequest topBoundaryFromRequest(const SolveStatic::Request& req, const core::TopBoundary& problem_top) {
+TopBoundaryRequest topBoundaryFromRequest(const SolveStatic::Request& req, const core::TopBoundary& problem_top,
+                                          core::Formulation model) {
   TopBoundaryRequest out;
+  const bool d3 = model == core::Formulation::ThreeD;
   switch (req.mode) {
     case SolveStatic::Request::TOP_POSITION: {
       const auto& p = req.top_position;
-      out.error = checkPlanar("top_position", p.x, p.y, p.z, "top position");
+      out.error = checkVector("top_position", p.x, p.y, p.z, "top position", model);
       if (!out.error.empty()) return out;
       out.top = problem_top;  // keeps e.g. buoy data; only type and position matter here
       out.top.type = core::TopBoundary::Type::Position;
       out.top.x = p.x;
+      out.top.y = d3 ? p.y : 0.0;
       out.top.z = p.z;
       break;
     }
     case SolveStatic::Request::TOP_FORCE: {
       const auto& f = req.top_force;
-      out.error = checkPlanar("top_force", f.x, f.y, f.z, "top force");
+      out.error = checkVector("top_force", f.x, f.y, f.z, "top force", model);
       if (!out.error.empty()) return out;
       out.top = problem_top;
       out.top.type = core::TopBoundary::Type::Force;
       out.top.fx = f.x;
+      out.top.fy = d3 ? f.y : 0.0;
       out.top.fz = f.z;
       break;
     }
@@ -158,7 +168,7 @@ TopBoundaryRequest topBoundaryFromRequest(const SolveStatic::Request& req, const
       return out;
   }
   out.ok = true;
-  out.summary = describeTop(out.top);
+  out.summary = describeTop(out.top, model);
   return out;
 }
 

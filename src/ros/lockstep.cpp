@@ -5,6 +5,7 @@
 #include <exception>
 #include <stdexcept>
 
+#include "mooring_dynamics/core/dynamics3d.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 
 namespace mooring_dynamics {
@@ -22,7 +23,7 @@ const char* toString(LockstepDriver::Outcome o) {
 }
 
 // ------------------------------------------------------------------------------------------------
-// The 2-D adapter.
+// The adapters.
 
 core::TopInput linearTopInput(double tau, double t0, double x0, double z0, double t1, double x1, double z1) {
   const double span = t1 - t0;
@@ -35,13 +36,27 @@ core::TopInput linearTopInput(double tau, double t0, double x0, double z0, doubl
   return in;
 }
 
+core::TopState linearTopState(double tau, double t0, double x0, double y0, double z0, double t1, double x1,
+                              double y1, double z1) {
+  const double span = t1 - t0;
+  core::TopState in;
+  const double w = std::clamp((tau - t0) / span, 0.0, 1.0);
+  in.x = x0 + w * (x1 - x0);
+  in.y = y0 + w * (y1 - y0);
+  in.z = z0 + w * (z1 - z0);
+  in.vx = (x1 - x0) / span;
+  in.vy = (y1 - y0) / span;
+  in.vz = (z1 - z0) / span;
+  return in;
+}
+
 namespace {
 
 class Solver2D final : public LockstepSolver {
  public:
   explicit Solver2D(const core::Problem& p) : s_(p) {}
   const core::StaticResult& initialStatic() const override { return s_.initialStatic(); }
-  void setTopSegment(double t0, double x0, double z0, double t1, double x1, double z1) override {
+  void setTopSegment(double t0, double x0, double, double z0, double t1, double x1, double, double z1) override {
     s_.setTopInput([=](double tau) { return linearTopInput(tau, t0, x0, z0, t1, x1, z1); });
   }
   core::StepReport advanceTo(double t) override { return s_.advanceTo(t); }
@@ -52,10 +67,42 @@ class Solver2D final : public LockstepSolver {
   core::DynamicSolver2D s_;
 };
 
+class Solver3D final : public LockstepSolver {
+ public:
+  explicit Solver3D(const core::Problem& p) : s_(p) {}
+  const core::StaticResult& initialStatic() const override { return s_.initialStatic(); }
+  void setTopSegment(double t0, double x0, double y0, double z0, double t1, double x1, double y1,
+                     double z1) override {
+    s_.setTopInput([=](double tau) { return linearTopState(tau, t0, x0, y0, z0, t1, x1, y1, z1); });
+  }
+  core::StepReport advanceTo(double t) override { return s_.advanceTo(t); }
+  core::StaticResult snapshot() const override { return s_.snapshot(); }
+  double time() const override { return s_.time(); }
+
+ private:
+  core::DynamicSolver3D s_;
+};
+
 }  // namespace
 
 LockstepSolverFactory makeSolver2D() {
-  return [](const core::Problem& p) -> std::unique_ptr<LockstepSolver> { return std::make_unique<Solver2D>(p); };
+  return [](const core::Problem& p) -> std::unique_ptr<LockstepSolver> {
+    if (p.formulation != core::Formulation::TwoD)
+      throw std::invalid_argument("model = 3d: the 2-D lockstep solver (makeSolver2D) needs model: 2d");
+    return std::make_unique<Solver2D>(p);
+  };
+}
+
+LockstepSolverFactory makeSolver3D() {
+  return [](const core::Problem& p) -> std::unique_ptr<LockstepSolver> {
+    if (p.formulation != core::Formulation::ThreeD)
+      throw std::invalid_argument("model = 2d: the 3-D lockstep solver (makeSolver3D) needs model: 3d");
+    return std::make_unique<Solver3D>(p);
+  };
+}
+
+LockstepSolverFactory makeSolverFor(core::Formulation formulation) {
+  return formulation == core::Formulation::ThreeD ? makeSolver3D() : makeSolver2D();
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -64,10 +111,7 @@ LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const Lo
                                LockstepSolverFactory factory)
     : problem_(problem), options_(options), factory_(std::move(factory)) {
   if (!(std::isfinite(dt) && dt > 0.0)) throw std::invalid_argument("dt = " + formatNumber(dt) + ": must be > 0");
-  if (problem.formulation == core::Formulation::ThreeD)
-    throw std::invalid_argument("model = 3d: the lockstep dynamic mode runs the 2-D solver so far (x-z plane); "
-                                "use model: 2d, or ~mode static for the 3-D static solve");
-  if (!factory_) factory_ = makeSolver2D();
+  if (!factory_) factory_ = makeSolverFor(problem.formulation);
   problem_.dynamics.dt = dt;
   problem_.dynamics.output_interval = 0.0;
   // The samples drive the top: the file's top motion is not used (a position table would also
@@ -81,6 +125,7 @@ LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const Lo
   solver_is_pristine_ = true;
   const core::NodeState& top = solver_->initialStatic().nodes.back();
   static_top_x_ = top.x;
+  static_top_y_ = top.y;
   static_top_z_ = top.z;
 }
 
@@ -88,12 +133,32 @@ LockstepDriver::~LockstepDriver() = default;
 
 double LockstepDriver::solverTime() const { return solver_ ? solver_->time() : 0.0; }
 
-std::unique_ptr<LockstepSolver> LockstepDriver::build(double x, double z, bool at_problem_top,
+std::string LockstepDriver::point(double x, double y, double z) const {
+  return threeD() ? "(" + formatNumber(x) + ", " + formatNumber(y) + ", " + formatNumber(z) + ")"
+                  : "(" + formatNumber(x) + ", " + formatNumber(z) + ")";
+}
+
+std::string LockstepDriver::positionError(double x, double y, double z) const {
+  if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z)))
+    return "non-finite top position (x, y, z) = (" + formatNumber(x) + ", " + formatNumber(y) + ", " +
+           formatNumber(z) + ")";
+  return planarError(y);
+}
+
+std::string LockstepDriver::planarError(double y) const {
+  if (threeD() || std::abs(y) <= kPlanarTolerance) return "";
+  return "y = " + formatNumber(y) + " m: the problem is model: 2d, its line lies in the vertical x-z plane y = 0 "
+         "of the frame (|y| <= " + formatNumber(kPlanarTolerance) + " m is taken as 0); set model: 3d in the "
+         "problem to follow motion out of that plane";
+}
+
+std::unique_ptr<LockstepSolver> LockstepDriver::build(double x, double y, double z, bool at_problem_top,
                                                       std::string& error) const {
   core::Problem p = problem_;
   if (!at_problem_top) {
     p.top.type = core::TopBoundary::Type::Position;
     p.top.x = x;
+    p.top.y = threeD() ? y : 0.0;
     p.top.z = z;
   }
   try {
@@ -104,22 +169,25 @@ std::unique_ptr<LockstepSolver> LockstepDriver::build(double x, double z, bool a
   return nullptr;
 }
 
-LockstepDriver::Result LockstepDriver::start(double t, double x, double z, Outcome outcome, const std::string& why) {
+LockstepDriver::Result LockstepDriver::start(double t, double x, double y, double z, Outcome outcome,
+                                             const std::string& why) {
   Result r;
   r.outcome = outcome;
-  const double dist = std::hypot(x - static_top_x_, z - static_top_z_);
+  const double dist = std::sqrt((x - static_top_x_) * (x - static_top_x_) + (y - static_top_y_) * (y - static_top_y_) +
+                                (z - static_top_z_) * (z - static_top_z_));
   const bool near = dist <= options_.start_tolerance;
   std::string error;
   if (near && solver_is_pristine_) {
     // Keep the solver built from the problem's statics.
   } else {
-    std::unique_ptr<LockstepSolver> fresh = build(x, z, near, error);
+    std::unique_ptr<LockstepSolver> fresh = build(x, y, z, near, error);
     if (!fresh) {
       started_ = false;
       r.outcome = Outcome::Dropped;
       r.start_failed = true;
-      r.message = (why.empty() ? std::string() : why + "; ") + "cannot start from statics with the top at (x, z) = (" +
-                  formatNumber(x) + ", " + formatNumber(z) + ") m: " + error + "; waiting for the next sample";
+      r.message = (why.empty() ? std::string() : why + "; ") + "cannot start from statics with the top at " +
+                  (threeD() ? "(x, y, z) = " : "(x, z) = ") + point(x, y, z) + " m: " + error +
+                  "; waiting for the next sample";
       return r;
     }
     solver_ = std::move(fresh);
@@ -131,33 +199,36 @@ LockstepDriver::Result LockstepDriver::start(double t, double x, double z, Outco
   last_time_ = t;
   prev_t_ = 0.0;
   prev_x_ = top.x;
+  prev_y_ = top.y;
   prev_z_ = top.z;
   jumps_ = 0;
   state_ = solver_->snapshot();
   r.publish = true;
   r.message = (why.empty() ? std::string() : why + "; ") +
-              (near ? "started from the problem's statics (top at (" + formatNumber(top.x) + ", " +
-                          formatNumber(top.z) + ") m, sample " + formatNumber(dist) + " m away)"
-                    : "top " + formatNumber(dist) + " m from the problem's static top (" +
-                          formatNumber(static_top_x_) + ", " + formatNumber(static_top_z_) +
-                          ") m: started from statics re-solved with the top at (" + formatNumber(x) + ", " +
-                          formatNumber(z) + ") m");
+              (near ? "started from the problem's statics (top at " + point(top.x, top.y, top.z) + " m, sample " +
+                          formatNumber(dist) + " m away)"
+                    : "top " + formatNumber(dist) + " m from the problem's static top " +
+                          point(static_top_x_, static_top_y_, static_top_z_) +
+                          " m: started from statics re-solved with the top at " + point(x, y, z) + " m");
   return r;
 }
 
-LockstepDriver::Result LockstepDriver::onSample(double t, double x, double z) {
+LockstepDriver::Result LockstepDriver::onSample(double t, double x, double y, double z) {
   Result r;
-  if (!(std::isfinite(t) && std::isfinite(x) && std::isfinite(z))) {
-    r.message = "non-finite sample (t, x, z) = (" + formatNumber(t) + ", " + formatNumber(x) + ", " +
-                formatNumber(z) + ")";
+  if (!(std::isfinite(t) && std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
+    r.message = "non-finite sample (t, x, y, z) = (" + formatNumber(t) + ", " + formatNumber(x) + ", " +
+                formatNumber(y) + ", " + formatNumber(z) + ")";
     return r;
   }
-  if (!started_) return start(t, x, z, Outcome::Started, "");
+  r.message = positionError(x, y, z);
+  if (!r.message.empty()) return r;
+  if (!threeD()) y = 0.0;
+  if (!started_) return start(t, x, y, z, Outcome::Started, "");
 
   const double gap = t - last_time_;
   if (gap <= 0.0) {
     if (-gap > options_.loop_back)
-      return start(t, x, z, Outcome::Reinitialised,
+      return start(t, x, y, z, Outcome::Reinitialised,
                    "time went back by " + formatNumber(-gap) + " s (more than " + formatNumber(options_.loop_back) +
                        " s: bag loop?)");
     r.message = "time not increasing: " + formatNumber(t) + " s after " + formatNumber(last_time_) + " s (" +
@@ -165,21 +236,21 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double z) {
     return r;
   }
   if (options_.max_gap > 0.0 && gap > options_.max_gap)
-    return start(t, x, z, Outcome::Reinitialised,
+    return start(t, x, y, z, Outcome::Reinitialised,
                  "gap of " + formatNumber(gap) + " s since the last sample (more than " +
                      formatNumber(options_.max_gap) + " s: the motion in between is unknown)");
 
-  const double tp = prev_t_, xp = prev_x_, zp = prev_z_;
+  const double tp = prev_t_, xp = prev_x_, yp = prev_y_, zp = prev_z_;
   const double tn = t - t0_;
   if (options_.max_speed > 0.0) {
-    const double speed = std::hypot(x - xp, z - zp) / (tn - tp);
+    const double dist = std::sqrt((x - xp) * (x - xp) + (y - yp) * (y - yp) + (z - zp) * (z - zp));
+    const double speed = dist / (tn - tp);
     if (speed > options_.max_speed) {
-      const std::string what = "top jumped from (" + formatNumber(xp) + ", " + formatNumber(zp) + ") to (" +
-                               formatNumber(x) + ", " + formatNumber(z) + ") m in " + formatNumber(tn - tp) +
-                               " s: " + formatNumber(speed) + " m/s, more than max_speed = " +
-                               formatNumber(options_.max_speed) + " m/s";
+      const std::string what = "top jumped from " + point(xp, yp, zp) + " to " + point(x, y, z) + " m in " +
+                               formatNumber(tn - tp) + " s: " + formatNumber(speed) +
+                               " m/s, more than max_speed = " + formatNumber(options_.max_speed) + " m/s";
       if (++jumps_ >= options_.jumps_to_reinit)
-        return start(t, x, z, Outcome::Reinitialised,
+        return start(t, x, y, z, Outcome::Reinitialised,
                      what + " (" + std::to_string(jumps_) + " samples in a row: the source moved)");
       r.message = what;
       return r;
@@ -187,18 +258,19 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double z) {
   }
   jumps_ = 0;
 
-  solver_->setTopSegment(tp, xp, zp, tn, x, z);
+  solver_->setTopSegment(tp, xp, yp, zp, tn, x, y, z);
   solver_is_pristine_ = false;
   r.report = solver_->advanceTo(tn);
   if (!r.report.ok) {
     const core::StepReport rep = r.report;
-    r = start(t, x, z, Outcome::RecoveredFailure, "dynamic solver failed: " + rep.message);
+    r = start(t, x, y, z, Outcome::RecoveredFailure, "dynamic solver failed: " + rep.message);
     r.report = rep;
     return r;
   }
   r.advanced = tn - tp;
   prev_t_ = tn;
   prev_x_ = x;
+  prev_y_ = y;
   prev_z_ = z;
   last_time_ = t;
   state_ = solver_->snapshot();
@@ -213,32 +285,33 @@ LockstepDriver::Result LockstepDriver::reset() {
     r.message = "not started yet: nothing to reset (the run starts from statics at the first motion sample)";
     return r;
   }
-  return reinitialiseAt(prev_x_, prev_z_, "reset requested");
+  return reinitialiseAt(prev_x_, prev_y_, prev_z_, "reset requested");
 }
 
-LockstepDriver::Result LockstepDriver::reinitialiseAt(double x, double z, const std::string& why) {
+LockstepDriver::Result LockstepDriver::reinitialiseAt(double x, double y, double z, const std::string& why) {
   if (!started_) {
     Result r;
     r.message = "not started yet: the run starts from statics at the first motion sample";
     return r;
   }
-  if (!(std::isfinite(x) && std::isfinite(z))) {
+  {
     Result r;
-    r.message = "non-finite top position (" + formatNumber(x) + ", " + formatNumber(z) + ")";
-    return r;
+    r.message = positionError(x, y, z);
+    if (!r.message.empty()) return r;
   }
+  if (!threeD()) y = 0.0;
   const double t = last_time_;
-  const double keep_x = prev_x_, keep_z = prev_z_, keep_t0 = t0_, keep_prev_t = prev_t_;
-  Result r = start(t, x, z, Outcome::Reinitialised, why);
+  const double keep_x = prev_x_, keep_y = prev_y_, keep_z = prev_z_, keep_t0 = t0_, keep_prev_t = prev_t_;
+  Result r = start(t, x, y, z, Outcome::Reinitialised, why);
   if (r.start_failed) {
     // The old solver is still there: keep running it.
     started_ = true;
     prev_x_ = keep_x;
+    prev_y_ = keep_y;
     prev_z_ = keep_z;
     t0_ = keep_t0;
     prev_t_ = keep_prev_t;
-    r.message = why + ": cannot solve statics with the top at (" + formatNumber(x) + ", " + formatNumber(z) +
-                ") m; the run goes on unchanged";
+    r.message = why + ": cannot solve statics with the top at " + point(x, y, z) + " m; the run goes on unchanged";
   }
   return r;
 }

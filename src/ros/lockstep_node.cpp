@@ -19,8 +19,7 @@ namespace ros_bridge {
 
 namespace {
 
-constexpr double kWarnPeriod = 5.0;      // [s] throttle of repeated warnings
-constexpr double kMaxOutOfPlane = 1e-3;  // [m] |y| above this is warned about (once)
+constexpr double kWarnPeriod = 5.0;  // [s] throttle of repeated warnings
 
 /// Reads a double parameter; `ok(v)` false throws naming the parameter, its value and `constraint`.
 double doubleParam(const ros::NodeHandle& pnh, const std::string& name, double def,
@@ -113,7 +112,7 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
   try {
     driver_ = std::make_unique<LockstepDriver>(problem_, dt, lo);
   } catch (const std::exception& e) {
-    throw std::runtime_error("dynamic mode: cannot start from the problem's statics (" + describeTop(problem_.top) +
+    throw std::runtime_error("dynamic mode: cannot start from the problem's statics (" + describeTop(problem_.top, problem_.formulation) +
                              "): " + e.what());
   }
   const double ms = (ros::WallTime::now() - w0).toSec() * 1000.0;
@@ -141,10 +140,12 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
   }
   diag_timer_ = nh_.createWallTimer(ros::WallDuration(diag_period), &LockstepNode::onDiagnosticsTimer, this);
 
-  ROS_INFO("mooring_dynamics: dynamic (lockstep) mode: loaded \"%s\" from %s: %zu segment(s), %.2f m of line; "
-           "statics in %.0f ms, static top at (%g, %g) m; dt %g s; top motion from %s; frame %s, wrench in %s",
-           problem_.name.c_str(), source_.c_str(), problem_.segments.size(), problem_.totalLength(), ms,
-           driver_->staticTopX(), driver_->staticTopZ(), dt, input.c_str(), frame_id_.c_str(), vessel_frame_.c_str());
+  ROS_INFO("mooring_dynamics: dynamic (lockstep) mode, %s model: loaded \"%s\" from %s: %zu segment(s), %.2f m "
+           "of line; statics in %.0f ms, static top at (%g, %g, %g) m; dt %g s; top motion from %s; frame %s, wrench "
+           "in %s",
+           driver_->threeD() ? "3-D" : "2-D (x-z plane)", problem_.name.c_str(), source_.c_str(),
+           problem_.segments.size(), problem_.totalLength(), ms, driver_->staticTopX(), driver_->staticTopY(),
+           driver_->staticTopZ(), dt, input.c_str(), frame_id_.c_str(), vessel_frame_.c_str());
 }
 
 void LockstepNode::onPose(const geometry_msgs::PoseStamped::ConstPtr& msg) {
@@ -216,10 +217,11 @@ void LockstepNode::onMotion(const ros::Time& stamp, const std::string& frame, do
     y = out.point.y;
     z = out.point.z;
   }
-  if (!warned_y_ && std::abs(y) > kMaxOutOfPlane) {
-    warned_y_ = true;
-    ROS_WARN("mooring_dynamics: %s.y = %s m: the dynamic solver is 2-D (x-z plane of %s); y is ignored (warned "
-             "once)", field.c_str(), formatNumber(y).c_str(), frame_id_.c_str());
+  // model: 2d: a fairlead off the plane y = 0 is dropped (lockstep.hpp); named here with its field.
+  const std::string planar = driver_->planarError(y);
+  if (!planar.empty()) {
+    reject(field + "." + planar + " (in " + frame_id_ + ")");
+    return;
   }
   if (!have_epoch_) {
     have_epoch_ = true;
@@ -227,7 +229,7 @@ void LockstepNode::onMotion(const ros::Time& stamp, const std::string& frame, do
   }
   const double t = (stamp - epoch_).toSec();
   const ros::WallTime w0 = ros::WallTime::now();
-  const LockstepDriver::Result r = driver_->onSample(t, x, z);
+  const LockstepDriver::Result r = driver_->onSample(t, x, y, z);
   handle(r, stamp, (ros::WallTime::now() - w0).toSec());
 }
 
@@ -271,7 +273,7 @@ void LockstepNode::publish(const ros::Time& stamp) {
   f.header.stamp = stamp;
   f.header.frame_id = frame_id_;
   f.vector.x = -s.top_force_x;
-  f.vector.y = 0.0;
+  f.vector.y = -s.top_force_y;  // 0 from the 2-D solver
   f.vector.z = -s.top_force_z;
   if (vessel_frame_ != frame_id_) {
     try {
@@ -307,17 +309,24 @@ void LockstepNode::publishMarkersAndFrames() {
     t.transform.translation.x = p.x;
     t.transform.translation.y = p.y;
     t.transform.translation.z = p.z;
-    // x axis along the cable tangent toward the top: (sin a, 0, cos a), a = inclination from +z
-    // (angle of the nearest node): a rotation about y by a - pi/2.
-    double a = 0.0, best = 1e300;
-    for (std::size_t i = 0; i < last_state_.s.size() && i < last_state_.angle.size(); ++i)
-      if (std::abs(last_state_.s[i] - b.s) < best) {
-        best = std::abs(last_state_.s[i] - b.s);
-        a = last_state_.angle[i];
+    // x axis along the cable tangent toward the top: (sin a cos b, sin a sin b, cos a), a =
+    // inclination from +z, b = azimuth of its horizontal part (0 in 2-D, where a is signed toward
+    // +x), of the nearest node: a rotation about z by b after one about y by a - pi/2.
+    const std::vector<core::NodeState>& nodes = driver_->state().nodes;  // the state last published
+    double a = 0.0, az = 0.0, best = 1e300;
+    for (const core::NodeState& ns : nodes)
+      if (std::abs(ns.s - b.s) < best) {
+        best = std::abs(ns.s - b.s);
+        a = ns.angle;
+        az = ns.azimuth;
       }
     const double th = a - 0.5 * M_PI;
-    t.transform.rotation.y = std::sin(0.5 * th);
-    t.transform.rotation.w = std::cos(0.5 * th);
+    const double cy = std::cos(0.5 * th), sy = std::sin(0.5 * th), cz = std::cos(0.5 * az), sz = std::sin(0.5 * az);
+    // q = qz(b) qy(th)
+    t.transform.rotation.w = cz * cy;
+    t.transform.rotation.x = -sz * sy;
+    t.transform.rotation.y = cz * sy;
+    t.transform.rotation.z = sz * cy;
     frames.push_back(t);
   }
   tf_broadcaster_->sendTransform(frames);
@@ -370,7 +379,7 @@ bool LockstepNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
 }
 
 bool LockstepNode::onSolveStatic(SolveStatic::Request& req, SolveStatic::Response& res) {
-  const TopBoundaryRequest top = topBoundaryFromRequest(req, problem_.top);
+  const TopBoundaryRequest top = topBoundaryFromRequest(req, problem_.top, problem_.formulation);
   if (!top.ok) {
     toFailureResponse("invalid request: " + top.error, res);
     ROS_WARN("mooring_dynamics: ~solve_static rejected: %s", res.message.c_str());
@@ -394,7 +403,7 @@ bool LockstepNode::onSolveStatic(SolveStatic::Request& req, SolveStatic::Respons
   if (req.reinitialise) {
     const core::NodeState& tn = o.result.nodes.back();
     const ros::WallTime w0 = ros::WallTime::now();
-    const LockstepDriver::Result r = driver_->reinitialiseAt(tn.x, tn.z, "~solve_static with reinitialise");
+    const LockstepDriver::Result r = driver_->reinitialiseAt(tn.x, tn.y, tn.z, "~solve_static with reinitialise");
     if (r.publish) {
       res.reinitialised = true;
       res.message += "; dynamic run re-initialised from this solution at stamp " + formatNumber(last_stamp_.toSec());

@@ -118,18 +118,24 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
   const std::size_t n = state.positions.size();
   if (n == 0) return out;
 
-  // Extent of the drawing: the line and the water column below it.
+  // Extent of the drawing: the line and the water column below it. The seabed, sea surface and
+  // colour bar sit at the line's mid y (0 for a 2-D line) and are as wide as its y extent plus a
+  // margin.
   double xmin = state.positions[0].x, xmax = xmin, zmin = state.positions[0].z, zmax = zmin;
+  double ymin = state.positions[0].y, ymax = ymin;
   for (const auto& p : state.positions) {
     xmin = std::min(xmin, p.x);
     xmax = std::max(xmax, p.x);
+    ymin = std::min(ymin, p.y);
+    ymax = std::max(ymax, p.y);
     zmin = std::min(zmin, p.z);
     zmax = std::max(zmax, p.z);
   }
-  const double zbed_anchor = env.seabedElevation(state.positions[0].x);
+  const double yc = 0.5 * (ymin + ymax);
+  const double zbed_anchor = env.seabedElevation(state.positions[0].x, state.positions[0].y);
   zmin = std::min(zmin, zbed_anchor);
   zmax = std::max(zmax, 0.0);
-  const double extent = std::max({xmax - xmin, zmax - zmin, 1.0});
+  const double extent = std::max({xmax - xmin, ymax - ymin, zmax - zmin, 1.0});
   const double scale = std::isfinite(options.scale) && options.scale > 0.0 ? options.scale : 1.0;
   const double line_width = std::max(0.005 * extent, 0.01) * scale;
   const double sphere = std::max(0.02 * extent, 0.05) * scale;
@@ -195,12 +201,12 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
   // Seabed: a flat patch, or a strip following the bottom profile.
   const double margin = 0.15 * extent;
   const double x0 = xmin - margin, x1 = xmax + margin;
-  const double half_width = 0.25 * extent;
+  const double half_width = 0.25 * extent + 0.5 * (ymax - ymin);
   const std_msgs::ColorRGBA sand = rgba(0.76, 0.64, 0.42, 0.8);
   if (env.seabed.profile.empty()) {
     auto m = baseMarker(state, "seabed", visualization_msgs::Marker::CUBE);
     const double thickness = 0.01 * extent;
-    m.pose.position = point(0.5 * (x0 + x1), 0.0, env.seabedElevation(0.5 * (x0 + x1)) - 0.5 * thickness);
+    m.pose.position = point(0.5 * (x0 + x1), yc, env.seabedElevation(0.5 * (x0 + x1), yc) - 0.5 * thickness);
     m.scale.x = x1 - x0;
     m.scale.y = 2.0 * half_width;
     m.scale.z = thickness;
@@ -213,9 +219,9 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
     const int k = 100;
     for (int i = 0; i < k; ++i) {
       const double xa = x0 + (x1 - x0) * i / k, xb = x0 + (x1 - x0) * (i + 1) / k;
-      const double za = env.seabedElevation(xa), zb = env.seabedElevation(xb);
-      const geometry_msgs::Point a0 = point(xa, -half_width, za), a1 = point(xa, half_width, za);
-      const geometry_msgs::Point b0 = point(xb, -half_width, zb), b1 = point(xb, half_width, zb);
+      const double za = env.seabedElevation(xa, yc), zb = env.seabedElevation(xb, yc);
+      const geometry_msgs::Point a0 = point(xa, yc - half_width, za), a1 = point(xa, yc + half_width, za);
+      const geometry_msgs::Point b0 = point(xb, yc - half_width, zb), b1 = point(xb, yc + half_width, zb);
       m.points.insert(m.points.end(), {a0, b0, b1, a0, b1, a1});
     }
     out.markers.push_back(m);
@@ -254,7 +260,7 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
     m.color = rgba(1.0, 1.0, 1.0, 1.0);
     for (int i = 0; i < k; ++i) {
       const double u = (i + 0.5) / k;
-      m.points.push_back(point(bar_x, 0.0, bar_z0 + u * bar_h));
+      m.points.push_back(point(bar_x, yc, bar_z0 + u * bar_h));
       m.colors.push_back(tensionColor(tmin + u * (tmax - tmin), tmin, tmax));
     }
     out.markers.push_back(m);
@@ -262,7 +268,7 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
     for (int j = 0; j < 2; ++j) {
       auto t = baseMarker(state, "scale", visualization_msgs::Marker::TEXT_VIEW_FACING);
       t.id = 1 + j;
-      t.pose.position = point(bar_x + 0.03 * extent * scale + 1.5 * text, 0.0, bar_z0 + j * bar_h);
+      t.pose.position = point(bar_x + 0.03 * extent * scale + 1.5 * text, yc, bar_z0 + j * bar_h);
       t.scale.z = 0.7 * text;
       t.color = rgba(1.0, 1.0, 1.0, 1.0);
       char buf[48];
@@ -272,7 +278,7 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
     }
     auto title = baseMarker(state, "scale", visualization_msgs::Marker::TEXT_VIEW_FACING);
     title.id = 3;
-    title.pose.position = point(bar_x, 0.0, bar_z0 + bar_h + 1.2 * text);
+    title.pose.position = point(bar_x, yc, bar_z0 + bar_h + 1.2 * text);
     title.scale.z = 0.7 * text;
     title.color = rgba(1.0, 1.0, 1.0, 1.0);
     title.text = "tension";
@@ -282,7 +288,7 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
   if (options.sea_surface) {
     auto m = baseMarker(state, "sea_surface", visualization_msgs::Marker::CUBE);
     const double thickness = 0.002 * extent;
-    m.pose.position = point(0.5 * (x0 + x1), 0.0, -0.5 * thickness);
+    m.pose.position = point(0.5 * (x0 + x1), yc, -0.5 * thickness);
     m.scale.x = x1 - x0;
     m.scale.y = 2.0 * half_width;
     m.scale.z = thickness;

@@ -105,7 +105,7 @@ SolveOutcome solveSafely(const core::Problem& problem) {
     return out;
   }
   for (const auto& ns : r.nodes) {
-    if (!(std::isfinite(ns.x) && std::isfinite(ns.z) && std::isfinite(ns.tension))) {
+    if (!(std::isfinite(ns.x) && std::isfinite(ns.y) && std::isfinite(ns.z) && std::isfinite(ns.tension))) {
       out.message = "static solver returned a non-finite value at s = " + formatNumber(ns.s) + " m";
       return out;
     }
@@ -113,9 +113,12 @@ SolveOutcome solveSafely(const core::Problem& problem) {
   double tmin = r.nodes.front().tension;
   for (const auto& ns : r.nodes) tmin = std::min(tmin, ns.tension);
   out.ok = true;
-  out.message = r.summary.message + "; top tension " + formatNumber(r.topTension() / 1000.0) +
-                " kN, top force (x, z) = (" + formatNumber(r.top_force_x) + ", " + formatNumber(r.top_force_z) +
-                ") N, min tension " + formatNumber(tmin) + " N" + (tmin <= 0.0 ? " (slack)" : "");
+  const std::string force = problem.formulation == core::Formulation::ThreeD
+                                ? "(x, y, z) = (" + formatNumber(r.top_force_x) + ", " + formatNumber(r.top_force_y) +
+                                      ", " + formatNumber(r.top_force_z) + ")"
+                                : "(x, z) = (" + formatNumber(r.top_force_x) + ", " + formatNumber(r.top_force_z) + ")";
+  out.message = r.summary.message + "; top tension " + formatNumber(r.topTension() / 1000.0) + " kN, top force " +
+                force + " N, min tension " + formatNumber(tmin) + " N" + (tmin <= 0.0 ? " (slack)" : "");
   return out;
 }
 
@@ -134,7 +137,7 @@ StaticNode::StaticNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : 
   solve_srv_ = pnh_.advertiseService("solve_static", &StaticNode::onSolveStatic, this);
   ROS_INFO("mooring_dynamics: loaded \"%s\" from %s: %zu segment(s), %.2f m of line, %s; frame %s",
            problem_.name.c_str(), source_.c_str(), problem_.segments.size(), problem_.totalLength(),
-           describeTop(problem_.top).c_str(), frame_id_.c_str());
+           describeTop(problem_.top, problem_.formulation).c_str(), frame_id_.c_str());
 }
 
 bool StaticNode::start() {
@@ -144,10 +147,10 @@ bool StaticNode::start() {
   if (!o.ok) {
     ROS_ERROR("mooring_dynamics: the problem's own static case (%s) failed after %.0f ms: %s. Nothing is "
               "published until a ~solve_static request succeeds.",
-              describeTop(problem_.top).c_str(), ms, o.message.c_str());
+              describeTop(problem_.top, problem_.formulation).c_str(), ms, o.message.c_str());
     return false;
   }
-  ROS_INFO("mooring_dynamics: static case (%s), %zu nodes, %.0f ms: %s", describeTop(problem_.top).c_str(),
+  ROS_INFO("mooring_dynamics: static case (%s), %zu nodes, %.0f ms: %s", describeTop(problem_.top, problem_.formulation).c_str(),
            o.result.nodes.size(), ms, o.message.c_str());
   publish(o.result);
   last_ = std::move(o.result);
@@ -155,7 +158,7 @@ bool StaticNode::start() {
 }
 
 bool StaticNode::onSolveStatic(SolveStatic::Request& req, SolveStatic::Response& res) {
-  const TopBoundaryRequest top = topBoundaryFromRequest(req, problem_.top);
+  const TopBoundaryRequest top = topBoundaryFromRequest(req, problem_.top, problem_.formulation);
   if (!top.ok) {
     toFailureResponse("invalid request: " + top.error, res);
     ROS_WARN("mooring_dynamics: ~solve_static rejected: %s", res.message.c_str());

@@ -8,7 +8,8 @@
 // step k is published with stamp t_k, and step k + 1 is taken with the wrench answering t_k (the
 // force is held over the step: explicit coupling). With ~wait_for_wrench (default) the vessel
 // waits for that answer, so the coupled run does not depend on timing; wall-clock pacing: one step
-// per ~dt / ~speed.
+// per ~dt / ~speed. Surge and heave only: with a model: 3d problem the fairlead's y stays at the
+// static top's and the wrench's y is not used.
 //
 // Parameters (private): ~problem_file (start at the problem's static top, in equilibrium with the
 // static cable force), ~frame_id (world), ~dt [s] (0.1), ~speed [-] (1 = real time),
@@ -87,6 +88,7 @@ class VesselSimNode {
     p.header.stamp = stamp_;
     p.header.frame_id = frame_id_;
     p.pose.position.x = model_->x();
+    p.pose.position.y = top_.y;  // surge and heave only: held at the static top's y (model: 3d)
     p.pose.position.z = model_->z();
     p.pose.orientation.w = 1.0;
     pub_.publish(p);

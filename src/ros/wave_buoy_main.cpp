@@ -2,8 +2,8 @@
 // heaving and surging buoy (WaveBuoyMotion, companions.hpp) as geometry_msgs/PoseStamped on
 // `top_pose` (remap it to the cable node's ~top_pose), stamped with ros::Time::now().
 //
-// Parameters (private): ~problem_file (the motion is about that problem's static top; or ~x0, ~z0
-// [m]), ~frame_id (world), ~rate [Hz] (10), ~heave [m] (1.0), ~surge [m] (0.5), ~period [s] (8),
+// Parameters (private): ~problem_file (the motion is about that problem's static top, y included
+// for model: 3d; or ~x0, ~y0, ~z0 [m]; the motion itself stays in x and z), ~frame_id (world), ~rate [Hz] (10), ~heave [m] (1.0), ~surge [m] (0.5), ~period [s] (8),
 // ~ramp [s] (10). It starts publishing once the topic has a subscriber, so the first sample (at
 // the static top, at rest) is not lost.
 #include <cmath>
@@ -29,9 +29,11 @@ class WaveBuoyNode {
     if (!problem_file.empty()) {
       const md::StaticTop top = md::staticTop(mooring_dynamics::core::loadProblemFromFile(problem_file));
       x0_ = top.x;
+      y0_ = top.y;
       z0_ = top.z;
     }
     pnh.param("x0", x0_, x0_);
+    pnh.param("y0", y0_, y0_);
     pnh.param("z0", z0_, z0_);
     pnh.param<std::string>("frame_id", frame_id_, "world");
     double rate = 10.0;
@@ -44,8 +46,8 @@ class WaveBuoyNode {
     if (!(std::isfinite(o_.period) && o_.period > 0.0)) throw std::runtime_error("~period must be > 0 [s]");
     pub_ = pnh.advertise<geometry_msgs::PoseStamped>("top_pose", 10);
     timer_ = pnh.createWallTimer(ros::WallDuration(1.0 / rate), &WaveBuoyNode::tick, this);
-    ROS_INFO("wave_buoy: heave %g m, surge %g m, period %g s about (%g, %g) m in %s at %g Hz on %s", o_.heave,
-             o_.surge, o_.period, x0_, z0_, frame_id_.c_str(), rate, pub_.getTopic().c_str());
+    ROS_INFO("wave_buoy: heave %g m, surge %g m, period %g s about (%g, %g, %g) m in %s at %g Hz on %s", o_.heave,
+             o_.surge, o_.period, x0_, y0_, z0_, frame_id_.c_str(), rate, pub_.getTopic().c_str());
   }
 
  private:
@@ -63,12 +65,13 @@ class WaveBuoyNode {
     p.header.stamp = now;
     p.header.frame_id = frame_id_;
     md::waveBuoyPosition(o_, x0_, z0_, (now - start_).toSec(), p.pose.position.x, p.pose.position.z);
+    p.pose.position.y = y0_;
     p.pose.orientation.w = 1.0;
     pub_.publish(p);
   }
 
   md::WaveBuoyOptions o_;
-  double x0_ = 0.0, z0_ = 0.0;
+  double x0_ = 0.0, y0_ = 0.0, z0_ = 0.0;
   std::string frame_id_;
   ros::Publisher pub_;
   ros::WallTimer timer_;

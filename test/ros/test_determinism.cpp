@@ -2,9 +2,12 @@
 // top-tension series
 //   * live: published as PoseStamped with wall-clock node time (test_determinism.test),
 //   * replayed from a bag with `rosbag play --clock` and use_sim_time (test_determinism.replay.test),
-//   * offline: core::DynamicSolver2D on the same problem and the same top motion table (linear
-//     between the samples, the top followed by position), without ROS,
-// to kDeterminism relative. Problem test/data/small_catenary.yaml, dt 0.1 s, track at 10 Hz.
+//   * offline: core::DynamicSolver2D or DynamicSolver3D (the problem's model) on the same problem
+//     and the same top motion (linear between the samples, the top followed by position),
+//     without ROS,
+// to kDeterminism relative. dt 0.1 s, track at 10 Hz. Problem (~problem_file) by default
+// test/data/small_catenary.yaml (model: 2d); test_determinism.3d.test and .3d_replay.test run
+// config/chain_mooring_3d.yaml (model: 3d) with a sway along y (~sway).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +15,7 @@
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <geometry_msgs/PoseStamped.h>
@@ -20,7 +24,9 @@
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/core/dynamics2d.hpp"
+#include "mooring_dynamics/core/dynamics3d.hpp"
 #include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/solvers.hpp"
 #include "mooring_dynamics/ros/lockstep.hpp"
 
 using mooring_dynamics::CableState;
@@ -36,56 +42,75 @@ constexpr int kSamples = 61;         // 6 s at 10 Hz
 const ros::Time kStart(2000.0);      // first stamp (sim time in the bag)
 
 std::string g_mode = "live", g_node = "/live";
+std::string g_problem_file = std::string(MD_SOURCE_DIR) + "/test/data/small_catenary.yaml";
+double g_sway = 0.0;  // [m] amplitude along y (model: 3d only)
 
 struct Sample {
   ros::Time stamp;
-  double x, z;
+  double x, y, z;
 };
 
-/// Ship track: starts at the static top (100, 0) m; surge 0.3 m (period 5 s) and heave 0.1 m
-/// (period 3 s), both starting from 0 so the track starts at rest position.
+core::Problem problem() { return core::loadProblemFromFile(g_problem_file); }
+
+/// Ship track: starts at the problem's static top (x0, y0, z0); surge 0.3 m (period 5 s), heave
+/// 0.1 m (period 3 s) and sway g_sway (period 4 s), all starting from 0 so the track starts at
+/// the rest position.
 std::vector<Sample> track() {
   const double kPi = 3.141592653589793;
+  const core::StaticResult st = core::solveStaticModel(problem());
+  EXPECT_TRUE(st.summary.converged) << st.summary.message;
+  const core::NodeState& top = st.nodes.back();
   std::vector<Sample> v;
   for (int k = 0; k < kSamples; ++k) {
     const double t = kDt * k;
-    v.push_back({kStart + ros::Duration(t), 100.0 - 0.3 * std::sin(2 * kPi * t / 5.0),
-                 0.1 * std::sin(2 * kPi * t / 3.0)});
+    v.push_back({kStart + ros::Duration(t), top.x - 0.3 * std::sin(2 * kPi * t / 5.0),
+                 top.y + g_sway * std::sin(2 * kPi * t / 4.0), top.z + 0.1 * std::sin(2 * kPi * t / 3.0)});
   }
   return v;
 }
 
-core::Problem problem() {
-  return core::loadProblemFromFile(std::string(MD_SOURCE_DIR) + "/test/data/small_catenary.yaml");
-}
-
 /// The core alone on the same track, as the lockstep node sets it up: statics of the problem,
 /// then per sample the top moves linearly from the previous sample (position followed with
-/// velocity and feedback), advanced to the sample's time after the first.
-std::vector<double> offlineTopTension(const std::vector<Sample>& tr) {
-  core::Problem p = problem();
+/// velocity and feedback), advanced to the sample's time after the first. `Solver` is
+/// core::DynamicSolver2D or DynamicSolver3D.
+template <class Solver>
+std::vector<double> offlineTopTension(const core::Problem& problem, const std::vector<Sample>& tr) {
+  core::Problem p = problem;
   p.dynamics.dt = kDt;
   p.dynamics.output_interval = 0.0;
   p.dynamics.top_motion = core::TopMotion();
   p.dynamics.top_motion.prescribe_position = true;
   p.dynamics.duration = kDt;
-  core::DynamicSolver2D s(p);
+  Solver s(p);
   std::vector<double> out{s.snapshot().nodes.back().tension};
-  double tp = 0.0, xp = s.initialStatic().nodes.back().x, zp = s.initialStatic().nodes.back().z;
+  const core::NodeState& top = s.initialStatic().nodes.back();
+  double tp = 0.0, xp = top.x, yp = top.y, zp = top.z;
   for (std::size_t k = 1; k < tr.size(); ++k) {
     const double t = (tr[k].stamp - tr[0].stamp).toSec();
-    const double x = tr[k].x, z = tr[k].z;
-    s.setTopInput([=](double tau) {
-      return mooring_dynamics::ros_bridge::linearTopInput(tau, tp, xp, zp, t, x, z);
-    });
+    const double x = tr[k].x, y = tr[k].y, z = tr[k].z;
+    if constexpr (std::is_same_v<Solver, core::DynamicSolver3D>)
+      s.setTopInput([=](double tau) {
+        return mooring_dynamics::ros_bridge::linearTopState(tau, tp, xp, yp, zp, t, x, y, z);
+      });
+    else
+      s.setTopInput([=](double tau) {
+        return mooring_dynamics::ros_bridge::linearTopInput(tau, tp, xp, zp, t, x, z);
+      });
     const core::StepReport r = s.advanceTo(t);
     EXPECT_TRUE(r.ok) << r.message;
     out.push_back(s.snapshot().nodes.back().tension);
     tp = t;
     xp = x;
+    yp = y;
     zp = z;
   }
   return out;
+}
+
+std::vector<double> offlineTopTension(const std::vector<Sample>& tr) {
+  const core::Problem p = problem();
+  return p.formulation == core::Formulation::ThreeD ? offlineTopTension<core::DynamicSolver3D>(p, tr)
+                                                    : offlineTopTension<core::DynamicSolver2D>(p, tr);
 }
 
 /// The same track as a problem-file position_table through core::runDynamic (cable_sim dynamic).
@@ -97,8 +122,10 @@ std::vector<double> positionTableTopTension(const std::vector<Sample>& tr) {
   p.dynamics.top_motion = core::TopMotion();
   p.dynamics.top_motion.type = core::TopMotion::Type::PositionTable;
   p.dynamics.top_motion.prescribe_position = true;
-  for (const Sample& s : tr) p.dynamics.top_motion.table.push_back({(s.stamp - tr[0].stamp).toSec(), s.x, s.z});
-  return core::runDynamic(p).top_tension;
+  for (const Sample& s : tr) {
+    p.dynamics.top_motion.table.push_back({(s.stamp - tr[0].stamp).toSec(), s.x, s.y, s.z});
+  }
+  return p.formulation == core::Formulation::ThreeD ? core::runDynamic3D(p).top_tension : core::runDynamic(p).top_tension;
 }
 
 geometry_msgs::PoseStamped toPose(const Sample& s) {
@@ -106,6 +133,7 @@ geometry_msgs::PoseStamped toPose(const Sample& s) {
   m.header.stamp = s.stamp;
   m.header.frame_id = "world";
   m.pose.position.x = s.x;
+  m.pose.position.y = s.y;
   m.pose.position.z = s.z;
   m.pose.orientation.w = 1.0;
   return m;
@@ -194,5 +222,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle pnh("~");
   pnh.param<std::string>("mode", g_mode, g_mode);
   pnh.param<std::string>("node", g_node, g_node);
+  pnh.param<std::string>("problem_file", g_problem_file, g_problem_file);
+  pnh.param("sway", g_sway, g_sway);
   return RUN_ALL_TESTS();
 }

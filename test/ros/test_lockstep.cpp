@@ -23,7 +23,10 @@
 #include <ros/ros.h>
 
 #include "mooring_dynamics/CableState.h"
+#include "lockstep_listener.hpp"
 
+using lockstep_test::Listener;
+using lockstep_test::waitForConnection;
 using mooring_dynamics::CableState;
 
 namespace {
@@ -34,62 +37,6 @@ const ros::Time kT0(1000.0);  // explicit stamps, far from 0
 
 std::string g_node = "/lockstep";
 std::string g_vessel_node = "/lockstep_vessel";
-
-/// Collects the outputs of one node, keyed by stamp (nanoseconds).
-struct Listener {
-  std::map<uint64_t, CableState> states;
-  std::map<uint64_t, geometry_msgs::WrenchStamped> wrenches;
-  int state_count = 0, wrench_count = 0;
-  ros::Subscriber s1, s2;
-
-  explicit Listener(const std::string& node) {
-    ros::NodeHandle nh;
-    s1 = nh.subscribe<CableState>(node + "/cable_state", 100, [this](const CableState::ConstPtr& m) {
-      states[m->header.stamp.toNSec()] = *m;
-      ++state_count;
-    });
-    s2 = nh.subscribe<geometry_msgs::WrenchStamped>(node + "/top_wrench", 100,
-                                                    [this](const geometry_msgs::WrenchStamped::ConstPtr& m) {
-                                                      wrenches[m->header.stamp.toNSec()] = *m;
-                                                      ++wrench_count;
-                                                    });
-  }
-  /// Spin until both a state and a wrench with `stamp` arrived, or `timeout` passes.
-  bool waitFor(const ros::Time& stamp, double timeout = 5.0) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && ros::WallTime::now() < end) {
-      ros::spinOnce();
-      if (states.count(stamp.toNSec()) && wrenches.count(stamp.toNSec())) return true;
-      ros::WallDuration(0.002).sleep();
-    }
-    return false;
-  }
-  /// Forget what arrived with `stamp` (before publishing a pose with a stamp used before).
-  void forget(const ros::Time& stamp) {
-    states.erase(stamp.toNSec());
-    wrenches.erase(stamp.toNSec());
-  }
-  /// Spin for `seconds`, returning how many states arrived meanwhile.
-  int countDuring(double seconds) {
-    const int before = state_count;
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-    while (ros::ok() && ros::WallTime::now() < end) {
-      ros::spinOnce();
-      ros::WallDuration(0.005).sleep();
-    }
-    return state_count - before;
-  }
-};
-
-bool waitForConnection(const ros::Publisher& pub, const Listener& l) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(15.0);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    if (pub.getNumSubscribers() > 0 && l.s1.getNumPublishers() > 0 && l.s2.getNumPublishers() > 0) return true;
-    ros::WallDuration(0.05).sleep();
-    ros::spinOnce();
-  }
-  return false;
-}
 
 geometry_msgs::PoseStamped pose(const ros::Time& stamp, double x, double z, double y = 0.0) {
   geometry_msgs::PoseStamped p;

@@ -34,36 +34,36 @@ TEST(LockstepDriver, StartAdvanceAndGap) {
   ros_bridge::LockstepOptions o;
   o.max_gap = 2.0;
   LockstepDriver d(problem(), kDt, o);
-  EXPECT_EQ(d.onSample(0.0, kTopX, kTopZ).outcome, O::Started);
-  const auto a = d.onSample(0.1, kTopX, kTopZ + 0.01);
+  EXPECT_EQ(d.onSample(0.0, kTopX, 0.0, kTopZ).outcome, O::Started);
+  const auto a = d.onSample(0.1, kTopX, 0.0, kTopZ + 0.01);
   EXPECT_EQ(a.outcome, O::Advanced);
   EXPECT_NEAR(a.advanced, 0.1, 1e-12);
   EXPECT_GE(a.report.steps, 1);
   // 2.5 s later (> max_gap): re-initialised from statics at the new sample.
-  const auto g = d.onSample(2.6, kTopX, kTopZ);
+  const auto g = d.onSample(2.6, kTopX, 0.0, kTopZ);
   EXPECT_EQ(g.outcome, O::Reinitialised);
   EXPECT_TRUE(g.publish);
   EXPECT_NE(g.message.find("gap of 2.5 s"), std::string::npos) << g.message;
   EXPECT_DOUBLE_EQ(d.solverTime(), 0.0);
   // 1.9 s later (< max_gap): advanced over the gap.
-  EXPECT_EQ(d.onSample(4.5, kTopX, kTopZ).outcome, O::Advanced);
+  EXPECT_EQ(d.onSample(4.5, kTopX, 0.0, kTopZ).outcome, O::Advanced);
   EXPECT_NEAR(d.solverTime(), 1.9, 1e-9);
 }
 
 TEST(LockstepDriver, JumpDroppedThenReinitialised) {
   LockstepDriver d(problem(), kDt);  // max_speed 50 m/s, 3 jumps re-initialise
-  d.onSample(0.0, kTopX, kTopZ);
-  d.onSample(0.1, kTopX, kTopZ);
+  d.onSample(0.0, kTopX, 0.0, kTopZ);
+  d.onSample(0.1, kTopX, 0.0, kTopZ);
   // 20 m in 0.1 s = 200 m/s: dropped.
-  auto j = d.onSample(0.2, kTopX - 20.0, kTopZ);
+  auto j = d.onSample(0.2, kTopX - 20.0, 0.0, kTopZ);
   EXPECT_EQ(j.outcome, O::Dropped);
   EXPECT_FALSE(j.publish);
   EXPECT_NE(j.message.find("max_speed = 50 m/s"), std::string::npos) << j.message;
   // A good sample resets the count.
-  EXPECT_EQ(d.onSample(0.3, kTopX, kTopZ).outcome, O::Advanced);
-  EXPECT_EQ(d.onSample(0.4, kTopX - 20.0, kTopZ).outcome, O::Dropped);
-  EXPECT_EQ(d.onSample(0.5, kTopX - 20.0, kTopZ).outcome, O::Dropped);
-  const auto r = d.onSample(0.6, kTopX - 20.0, kTopZ);
+  EXPECT_EQ(d.onSample(0.3, kTopX, 0.0, kTopZ).outcome, O::Advanced);
+  EXPECT_EQ(d.onSample(0.4, kTopX - 20.0, 0.0, kTopZ).outcome, O::Dropped);
+  EXPECT_EQ(d.onSample(0.5, kTopX - 20.0, 0.0, kTopZ).outcome, O::Dropped);
+  const auto r = d.onSample(0.6, kTopX - 20.0, 0.0, kTopZ);
   EXPECT_EQ(r.outcome, O::Reinitialised) << r.message;
   EXPECT_NEAR(d.state().nodes.back().x, kTopX - 20.0, 1e-6);
 }
@@ -71,8 +71,8 @@ TEST(LockstepDriver, JumpDroppedThenReinitialised) {
 TEST(LockstepDriver, ResetAndReinitialiseAt) {
   LockstepDriver d(problem(), kDt);
   EXPECT_EQ(d.reset().outcome, O::Dropped) << "nothing to reset before the first sample";
-  d.onSample(0.0, kTopX, kTopZ);
-  for (int k = 1; k <= 5; ++k) d.onSample(0.1 * k, kTopX - 0.1 * k, kTopZ);
+  d.onSample(0.0, kTopX, 0.0, kTopZ);
+  for (int k = 1; k <= 5; ++k) d.onSample(0.1 * k, kTopX - 0.1 * k, 0.0, kTopZ);
   const auto r = d.reset();
   EXPECT_EQ(r.outcome, O::Reinitialised);
   ASSERT_TRUE(r.publish);
@@ -84,19 +84,19 @@ TEST(LockstepDriver, ResetAndReinitialiseAt) {
   p.top.x = kTopX - 0.5;
   p.top.z = kTopZ;
   LockstepDriver fresh(p, kDt);
-  const double t_ref = fresh.onSample(0.0, kTopX - 0.5, kTopZ).publish ? fresh.state().nodes.back().tension : 0.0;
+  const double t_ref = fresh.onSample(0.0, kTopX - 0.5, 0.0, kTopZ).publish ? fresh.state().nodes.back().tension : 0.0;
   EXPECT_NEAR(d.state().nodes.back().tension, t_ref, kSameStatics * t_ref);
   // The next sample advances from the reset state at the old time base.
-  EXPECT_EQ(d.onSample(0.6, kTopX - 0.5, kTopZ).outcome, O::Advanced);
+  EXPECT_EQ(d.onSample(0.6, kTopX - 0.5, 0.0, kTopZ).outcome, O::Advanced);
   EXPECT_NEAR(d.solverTime(), 0.1, 1e-9);
 
   // Out of reach (the line reaches 180 m): refused, the run goes on.
-  const auto far = d.reinitialiseAt(400.0, 0.0, "test");
+  const auto far = d.reinitialiseAt(400.0, 0.0, 0.0, "test");
   EXPECT_FALSE(far.publish);
   EXPECT_TRUE(d.started());
   EXPECT_NE(far.message.find("the run goes on unchanged"), std::string::npos) << far.message;
-  EXPECT_EQ(d.onSample(0.7, kTopX - 0.5, kTopZ).outcome, O::Advanced);
-  const auto near = d.reinitialiseAt(kTopX - 1.0, kTopZ, "test");
+  EXPECT_EQ(d.onSample(0.7, kTopX - 0.5, 0.0, kTopZ).outcome, O::Advanced);
+  const auto near = d.reinitialiseAt(kTopX - 1.0, 0.0, kTopZ, "test");
   EXPECT_TRUE(near.publish);
   EXPECT_NEAR(d.state().nodes.back().x, kTopX - 1.0, 1e-9);
 }
@@ -104,17 +104,17 @@ TEST(LockstepDriver, ResetAndReinitialiseAt) {
 TEST(LockstepDriver, BadSamples) {
   LockstepDriver d(problem(), kDt);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(d.onSample(0.0, nan, 0.0).outcome, O::Dropped);
+  EXPECT_EQ(d.onSample(0.0, nan, 0.0, 0.0).outcome, O::Dropped);
   EXPECT_FALSE(d.started());
   // Out of reach at the start: statics fail, start_failed, still not started.
-  const auto s = d.onSample(0.0, 400.0, 0.0);
+  const auto s = d.onSample(0.0, 400.0, 0.0, 0.0);
   EXPECT_EQ(s.outcome, O::Dropped);
   EXPECT_TRUE(s.start_failed);
   EXPECT_FALSE(d.started());
-  EXPECT_EQ(d.onSample(0.1, kTopX, kTopZ).outcome, O::Started);
-  EXPECT_EQ(d.onSample(0.1, kTopX, kTopZ).outcome, O::Dropped);   // same stamp
-  EXPECT_EQ(d.onSample(-0.5, kTopX, kTopZ).outcome, O::Dropped);  // back by 0.6 s
-  EXPECT_EQ(d.onSample(-1.5, kTopX, kTopZ).outcome, O::Reinitialised);  // back by 1.6 s: bag loop
+  EXPECT_EQ(d.onSample(0.1, kTopX, 0.0, kTopZ).outcome, O::Started);
+  EXPECT_EQ(d.onSample(0.1, kTopX, 0.0, kTopZ).outcome, O::Dropped);   // same stamp
+  EXPECT_EQ(d.onSample(-0.5, kTopX, 0.0, kTopZ).outcome, O::Dropped);  // back by 0.6 s
+  EXPECT_EQ(d.onSample(-1.5, kTopX, 0.0, kTopZ).outcome, O::Reinitialised);  // back by 1.6 s: bag loop
 }
 
 TEST(LockstepMonitor, Levels) {
@@ -129,10 +129,10 @@ TEST(LockstepMonitor, Levels) {
 
   LockstepDriver d(problem(), kDt);
   m.onMotionReceived(2.1);
-  auto r = d.onSample(0.0, kTopX, kTopZ);
+  auto r = d.onSample(0.0, kTopX, 0.0, kTopZ);
   m.onResult(r, 2.1, 0.0, &d.state(), d.solverTime());
   m.onMotionReceived(2.2);
-  r = d.onSample(0.1, kTopX, kTopZ);
+  r = d.onSample(0.1, kTopX, 0.0, kTopZ);
   m.onResult(r, 2.2, 0.01, &d.state(), d.solverTime());  // 0.1 s simulated in 0.01 s: RTF 10
   s = m.summarise(2.3);
   EXPECT_EQ(s.level, LockstepMonitor::OK) << s.message;
@@ -140,7 +140,7 @@ TEST(LockstepMonitor, Levels) {
 
   // Slow: 0.1 s simulated in 0.2 s -> RTF 0.5 < 1: WARN.
   m.onMotionReceived(2.4);
-  r = d.onSample(0.2, kTopX, kTopZ);
+  r = d.onSample(0.2, kTopX, 0.0, kTopZ);
   m.onResult(r, 2.4, 0.2, &d.state(), d.solverTime());
   s = m.summarise(2.5);
   EXPECT_EQ(s.level, LockstepMonitor::WARN);

@@ -17,8 +17,10 @@ namespace ros_bridge {
 struct StaticTop {
   double x = 0.0, z = 0.0;    ///< [m]
   double fx = 0.0, fz = 0.0;  ///< force of the line on the platform [N] (= -top_force)
+  double y = 0.0, fy = 0.0;   ///< y components (model: 3d; 0 for model: 2d)
 };
-/// Solves the problem's statics. Throws std::runtime_error (naming the problem) when they fail.
+/// Solves the problem's statics (its model, core::solveStaticModel). Throws std::runtime_error
+/// (naming the problem) when they fail.
 StaticTop staticTop(const core::Problem& problem);
 
 /// Smooth start: 0 at t = 0 rising to 1 at t = ramp (half cosine); 1 when ramp <= 0.

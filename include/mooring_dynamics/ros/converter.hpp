@@ -1,8 +1,9 @@
 // The one place where core structs and ROS messages meet (no node handles, no publishing).
 //
 // Frames: every position and force is in the node's frame (parameter ~frame_id, REP 103: x east,
-// y north, z up, z = 0 at the mean sea surface). The core's 2-D solver works in the vertical x-z
-// plane of that frame, so y is 0 on the way out and must be 0 on the way in.
+// y north, z up, z = 0 at the mean sea surface). With `model: 2d` the core works in the vertical
+// x-z plane of that frame, so y is 0 on the way out and must be 0 on the way in; with `model: 3d`
+// all three components are used both ways.
 #pragma once
 
 #include <string>
@@ -18,15 +19,16 @@
 namespace mooring_dynamics {
 namespace ros_bridge {
 
-/// End forces of a line in the x-z plane [N] (same conventions as core::StaticResult).
+/// End forces of a line [N] (same conventions as core::StaticResult).
 struct EndForces {
   double top_x = 0.0, top_z = 0.0;        ///< force the platform applies to the line's top end [N]
   double anchor_x = 0.0, anchor_z = 0.0;  ///< force the line exerts on the anchor [N]
   double top_y = 0.0, anchor_y = 0.0;     ///< y components [N] (3-D model; 0 from the 2-D solver)
 };
 
-/// CableState from per-node values (anchor first). Shared by the static and, later, the dynamic
-/// output path: y = 0 everywhere, min_tension over all nodes, slack when any tension <= 0.
+/// CableState from per-node values (anchor first). Shared by the static and the dynamic output
+/// path: positions and forces with their y (0 from the 2-D solver), min_tension over all nodes,
+/// slack when any tension <= 0.
 CableState toCableState(const std::vector<core::NodeState>& nodes, const EndForces& forces, bool converged,
                         const std::string& line_name, const std::string& frame_id, const ros::Time& stamp);
 
@@ -35,7 +37,7 @@ CableState toCableState(const core::StaticResult& result, const std::string& lin
                         const std::string& frame_id, const ros::Time& stamp);
 
 /// Fill a SolveStatic response from a static result: success = summary.converged, message =
-/// summary.message, iterations, end forces, positions and tensions (anchor to top, y = 0).
+/// summary.message, iterations, end forces, positions and tensions (anchor to top).
 void toResponse(const core::StaticResult& result, SolveStatic::Response& res);
 
 /// Failed response: success = false, the message, all arrays empty.
@@ -50,13 +52,15 @@ struct TopBoundaryRequest {
 };
 
 /// SolveStatic request -> core::TopBoundary. `problem_top` is what PROBLEM_DEFAULT returns.
-/// Rejects an unknown mode, NaN/inf components (`top_position.x = nan: must be finite`) and a
-/// non-zero y (the 2-D solver works in the x-z plane). Whether the line can reach a requested
-/// position is left to the core (core::Problem::validate).
-TopBoundaryRequest topBoundaryFromRequest(const SolveStatic::Request& req, const core::TopBoundary& problem_top);
+/// Rejects an unknown mode, NaN/inf components (`top_position.x = nan: must be finite`) and, for
+/// `model` TwoD, a non-zero y (the 2-D solver works in the x-z plane); ThreeD takes y as given.
+/// Whether the line can reach a requested position is left to the core (core::Problem::validate).
+TopBoundaryRequest topBoundaryFromRequest(const SolveStatic::Request& req, const core::TopBoundary& problem_top,
+                                          core::Formulation model = core::Formulation::TwoD);
 
-/// Short description of a top boundary for logs and messages.
-std::string describeTop(const core::TopBoundary& top);
+/// Short description of a top boundary for logs and messages: "(x, z) = ..." for TwoD,
+/// "(x, y, z) = ..." for ThreeD.
+std::string describeTop(const core::TopBoundary& top, core::Formulation model = core::Formulation::TwoD);
 
 /// "%.6g" formatting that prints nan/inf as such (for messages).
 std::string formatNumber(double v);

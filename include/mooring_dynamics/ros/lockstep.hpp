@@ -2,13 +2,17 @@
 // do with each sample (start, advance, drop, re-initialise). No ROS calls here, so the policy is
 // testable without a master; LockstepNode (lockstep_node.hpp) wires it to topics and logs.
 //
-// The solver sits behind LockstepSolver (below): today the 2-D core::DynamicSolver2D
-// (makeSolver2D); a 3-D solver only needs another adapter and factory.
+// The solver sits behind LockstepSolver (below): core::DynamicSolver2D (makeSolver2D) for a
+// problem with `model: 2d`, core::DynamicSolver3D (makeSolver3D) for `model: 3d`
+// (makeSolverFor picks by Problem::formulation). Positions are (x, y, z) in the problem frame.
 //
 // Times are seconds on any fixed epoch (the node passes stamp - first stamp ever received); the
 // solver's own time is t - t0, where t0 is the time of the sample that (re)started it.
 //
-// Policy (docs/ros_interface.md, "Dynamic mode"):
+// Policy (docs/ros_interface.md, "Dynamic mode"); distances and speeds are 3-D:
+//  * model: 2d and |y| > kPlanarTolerance: dropped (the 2-D line lies in the plane y = 0; the
+//    message names the value and points to model: 3d), state kept; a |y| within the tolerance
+//    (rounding in a tf chain) is taken as y = 0.
 //  * first sample (or after a re-initialisation): if the top is within `start_tolerance` of the
 //    static top of the problem, the solver starts from the problem's statics; otherwise statics
 //    are re-solved with the top held at the sample's position. If that fails (e.g. out of reach)
@@ -27,7 +31,8 @@
 //    row (the source really moved, e.g. a simulator reset): re-initialised at the new position.
 //  * solver failure: re-initialised from statics with the top at the sample's position.
 //  * reset(): re-initialised from statics at the last accepted top position (service ~reset);
-//    reinitialiseAt(x, z): the same with the top at (x, z) (service ~solve_static with reinitialise).
+//    reinitialiseAt(x, y, z): the same with the top at (x, y, z) (service ~solve_static with
+//    reinitialise).
 #pragma once
 
 #include <functional>
@@ -37,6 +42,7 @@
 #include "mooring_dynamics/core/dynamics2d.hpp"
 #include "mooring_dynamics/core/model.hpp"
 #include "mooring_dynamics/core/result.hpp"
+#include "mooring_dynamics/core/top_motion.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {
@@ -49,9 +55,11 @@ class LockstepSolver {
   virtual ~LockstepSolver() = default;
   /// The static solution the run started from (solver time 0).
   virtual const core::StaticResult& initialStatic() const = 0;
-  /// Top path of the next advance: linear from (x0, z0) at t0 to (x1, z1) at t1 > t0, with the
-  /// velocity of that segment; held at the end points outside [t0, t1].
-  virtual void setTopSegment(double t0, double x0, double z0, double t1, double x1, double z1) = 0;
+  /// Top path of the next advance: linear from (x0, y0, z0) at t0 to (x1, y1, z1) at t1 > t0,
+  /// with the velocity of that segment; held at the end points outside [t0, t1]. A 2-D solver
+  /// uses x and z only (the driver never gives it y != 0).
+  virtual void setTopSegment(double t0, double x0, double y0, double z0, double t1, double x1, double y1,
+                             double z1) = 0;
   /// Advance to solver time t (base steps, the last one shortened to land on t).
   virtual core::StepReport advanceTo(double t) = 0;
   /// Current per-node values and end forces.
@@ -63,12 +71,23 @@ class LockstepSolver {
 /// std::invalid_argument (invalid problem) or std::runtime_error (statics do not converge).
 using LockstepSolverFactory = std::function<std::unique_ptr<LockstepSolver>(const core::Problem&)>;
 
-/// core::DynamicSolver2D behind LockstepSolver.
+/// core::DynamicSolver2D behind LockstepSolver (problem.formulation must be TwoD).
 LockstepSolverFactory makeSolver2D();
+/// core::DynamicSolver3D behind LockstepSolver (problem.formulation must be ThreeD).
+LockstepSolverFactory makeSolver3D();
+/// makeSolver2D or makeSolver3D, as `formulation` says.
+LockstepSolverFactory makeSolverFor(core::Formulation formulation);
+
+/// [m] model: 2d: a sample with |y| above this is dropped; within it y is taken as 0 (rounding in
+/// a tf chain or a frame conversion, far below any motion the line responds to).
+constexpr double kPlanarTolerance = 1e-3;
 
 /// The exact top input the 2-D adapter gives the core for setTopSegment (shared with tests that
 /// run the core offline on the same track).
 core::TopInput linearTopInput(double tau, double t0, double x0, double z0, double t1, double x1, double z1);
+/// The same for the 3-D adapter.
+core::TopState linearTopState(double tau, double t0, double x0, double y0, double z0, double t1, double x1,
+                              double y1, double z1);
 
 struct LockstepOptions {
   double start_tolerance = 0.01;  ///< [m] first sample farther than this from the static top: re-solve statics there
@@ -100,24 +119,30 @@ class LockstepDriver {
   /// The top motion of the problem file is replaced by the samples (followed by position, with
   /// velocity and position feedback). Builds the first solver (static start) at once: throws
   /// std::invalid_argument / std::runtime_error like the factory when the problem's statics fail.
+  /// An empty `factory` means makeSolverFor(problem.formulation).
   LockstepDriver(const core::Problem& problem, double dt, const LockstepOptions& options = LockstepOptions(),
-                 LockstepSolverFactory factory = makeSolver2D());
+                 LockstepSolverFactory factory = nullptr);
   ~LockstepDriver();
 
-  /// One sample: top at (x, z) [m] at time t [s].
-  Result onSample(double t, double x, double z);
+  /// One sample: top at (x, y, z) [m] at time t [s].
+  Result onSample(double t, double x, double y, double z);
 
   /// Re-initialise from statics at the last accepted top position, keeping the time of the last
   /// sample (the next sample advances from there). Dropped (nothing to do) before the first sample.
   Result reset();
-  /// Re-initialise from statics with the top held at (x, z), at the time of the last sample.
+  /// Re-initialise from statics with the top held at (x, y, z), at the time of the last sample.
   /// Before the first sample: Dropped (the run starts at the first sample anyway).
-  Result reinitialiseAt(double x, double z, const std::string& why);
+  Result reinitialiseAt(double x, double y, double z, const std::string& why);
 
   bool started() const { return started_; }
   /// Static top position of the problem (where the first sample should be) [m].
   double staticTopX() const { return static_top_x_; }
+  double staticTopY() const { return static_top_y_; }
   double staticTopZ() const { return static_top_z_; }
+  bool threeD() const { return problem_.formulation == core::Formulation::ThreeD; }
+  /// Empty when a top at this y can be followed (3-D: any y; 2-D: |y| <= kPlanarTolerance), else
+  /// "y = 0.5 m: the problem is model: 2d ..." (the node prefixes the message field).
+  std::string planarError(double y) const;
   /// Solver time of the current state [s] (t - t0).
   double solverTime() const;
   /// Time of the last accepted sample [s] (valid once started).
@@ -128,18 +153,22 @@ class LockstepDriver {
   const core::Problem& problem() const { return problem_; }
 
  private:
-  Result start(double t, double x, double z, Outcome outcome, const std::string& why);
-  std::unique_ptr<LockstepSolver> build(double x, double z, bool at_problem_top, std::string& error) const;
+  Result start(double t, double x, double y, double z, Outcome outcome, const std::string& why);
+  std::unique_ptr<LockstepSolver> build(double x, double y, double z, bool at_problem_top, std::string& error) const;
+  /// Empty when (x, y, z) is a usable top position for the model, else why not.
+  std::string positionError(double x, double y, double z) const;
+  /// "(x, z)" in 2-D, "(x, y, z)" in 3-D, for messages.
+  std::string point(double x, double y, double z) const;
 
   core::Problem problem_;
   LockstepOptions options_;
   LockstepSolverFactory factory_;
   std::unique_ptr<LockstepSolver> solver_;
   bool solver_is_pristine_ = false;  ///< solver_ is the problem's static start, not yet advanced
-  double static_top_x_ = 0.0, static_top_z_ = 0.0;
+  double static_top_x_ = 0.0, static_top_y_ = 0.0, static_top_z_ = 0.0;
   bool started_ = false;
   double t0_ = 0.0;                  ///< sample time of solver time 0
-  double prev_t_ = 0.0, prev_x_ = 0.0, prev_z_ = 0.0;  ///< last accepted sample (solver time, position)
+  double prev_t_ = 0.0, prev_x_ = 0.0, prev_y_ = 0.0, prev_z_ = 0.0;  ///< last accepted sample (solver time, position)
   double last_time_ = 0.0;           ///< time of the last accepted sample (epoch time)
   int jumps_ = 0;                    ///< consecutive samples dropped as jumps
   core::StaticResult state_;

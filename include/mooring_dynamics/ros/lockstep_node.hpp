@@ -96,7 +96,6 @@ class LockstepNode {
   ros::Time last_stamp_;          ///< stamp of the last published state
   CableState last_state_;
   geometry_msgs::WrenchStamped last_wrench_;
-  bool warned_y_ = false;
 };
 
 }  // namespace ros_bridge

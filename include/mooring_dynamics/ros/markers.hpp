@@ -8,8 +8,10 @@
 //   top/0         SPHERE at the last node
 //   label/0       TEXT_VIEW_FACING above the top: "T top = 12.3 kN" (+ "(not converged)", "(slack)")
 //   seabed/0      CUBE: flat seabed patch at the seabed elevation (thin slab just below it), or
-//                 TRIANGLE_LIST following the bottom profile when the environment has one
-//   sea_surface/0 CUBE: translucent thin slab at z = 0 (mean sea surface)
+//                 TRIANGLE_LIST following the bottom (profile or grid, its section at the line's
+//                 mid y) when the environment has one; centred on the line's mid y and wider
+//                 than its y extent (a 3-D line)
+//   sea_surface/0 CUBE: translucent thin slab at z = 0 (mean sea surface), likewise centred
 //   bodies/k      SPHERE per inline body (floats yellow, weights dark grey), at its arclength,
 //                 drawn at its diameter (at least the automatic sphere size)
 //   buoy/0        CYLINDER or SPHERE: the surface buoy at the top, when the problem has one
