@@ -128,6 +128,8 @@ std::string describeTop(const core::TopBoundary& top, core::Formulation model) {
       return "top force " + vec(top.fx, top.fy, top.fz) + " N";
     case core::TopBoundary::Type::Buoy:
       return "surface buoy at the top (diameter " + formatNumber(top.buoy.diameter) + " m)";
+    case core::TopBoundary::Type::Body:
+      return "subsurface buoy at the top (body index " + std::to_string(top.body) + ")";
   }
   return "unknown top boundary";
 }

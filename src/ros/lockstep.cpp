@@ -111,6 +111,14 @@ LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const Lo
                                LockstepSolverFactory factory)
     : problem_(problem), options_(options), factory_(std::move(factory)) {
   if (!(std::isfinite(dt) && dt > 0.0)) throw std::invalid_argument("dt = " + formatNumber(dt) + ": must be > 0");
+  // The samples drive the line's top: a line whose top floats free (a subsurface buoy) or whose
+  // lower end is free (a tow; the steady start needs the ship's velocity) is not run in lockstep.
+  if (problem.top.type == core::TopBoundary::Type::Body)
+    throw std::invalid_argument("top.body: the top of this line floats free (a subsurface buoy), so no motion "
+                                "source can drive it; use ~mode static or cable_sim dynamic");
+  if (problem.lower_end == core::Problem::LowerEnd::Free)
+    throw std::invalid_argument("free_end: towed lines are not run in lockstep yet (the steady-tow start needs the "
+                                "ship's velocity); use cable_sim dynamic with a ship_track");
   if (!factory_) factory_ = makeSolverFor(problem.formulation);
   problem_.dynamics.dt = dt;
   problem_.dynamics.output_interval = 0.0;
