@@ -1,20 +1,79 @@
 #include "mooring_dynamics/core/banded_matrix.hpp"
 
 #include <algorithm>
-#include <cassert>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
 extern "C" {
 void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab,
              int* ipiv, int* info);
-void dgbtrs_(const char* trans, const int* n, const int* kl, const int* ku, const int* nrhs,
-             const double* ab, const int* ldab, const int* ipiv, double* b, const int* ldb, int* info,
-             std::size_t trans_len);
 }
 
 namespace mooring_dynamics {
 namespace core {
+
+namespace {
+
+/// In-place band LU with partial pivoting of an n x n matrix in LAPACK band storage (leading
+/// dimension 2 kl + ku + 1), the algorithm of LAPACK's dgbtf2 step by step (same pivots: the
+/// first entry of largest magnitude; same fill-in bookkeeping), with the half-bandwidths as
+/// compile-time constants so that the column loops have fixed lengths. ipiv is 1-based as in
+/// LAPACK. Returns 0, or the 1-based column of the first exactly zero pivot.
+template <int KL, int KU>
+int bandFactor(int n, double* ab, int* ipiv) {
+  constexpr int KV = KL + KU;
+  constexpr int LD = 2 * KL + KU + 1;
+  // Element A(i, c) of the band: ab[KV + i - c + c LD] = ab[KV + i + c (LD - 1)].
+  auto idx = [](int i, int c) { return static_cast<std::size_t>(KV + i) + static_cast<std::size_t>(c) * (LD - 1); };
+  // Fill-in rows of columns KU + 1 .. KV - 1 start zero (dgbtf2).
+  for (int j = KU + 1; j < std::min(KV, n); ++j)
+    for (int i = KV - j; i < KL; ++i) ab[i + static_cast<std::size_t>(j) * LD] = 0.0;
+  int ju = 0, info = 0;
+  for (int j = 0; j < n; ++j) {
+    if (j + KV < n)
+      for (int i = 0; i < KL; ++i) ab[i + static_cast<std::size_t>(j + KV) * LD] = 0.0;
+    const int km = std::min(KL, n - 1 - j);
+    double* col = ab + KV + static_cast<std::size_t>(j) * LD;  // col[0] diagonal, col[1..km] below
+    int jp = 0;
+    double best = std::abs(col[0]);
+    for (int i = 1; i <= km; ++i)
+      if (std::abs(col[i]) > best) {
+        best = std::abs(col[i]);
+        jp = i;
+      }
+    ipiv[j] = j + jp + 1;
+    if (col[jp] == 0.0) {
+      if (info == 0) info = j + 1;
+      continue;
+    }
+    ju = std::max(ju, std::min(j + KU + jp, n - 1));
+    if (jp != 0)
+      for (int c = j; c <= ju; ++c) std::swap(ab[idx(j + jp, c)], ab[idx(j, c)]);
+    if (km == 0) continue;
+    const double r = 1.0 / col[0];
+    if (km == KL) {
+      for (int i = 1; i <= KL; ++i) col[i] *= r;
+      for (int c = j + 1; c <= ju; ++c) {
+        const double u = ab[idx(j, c)];
+        if (u == 0.0) continue;
+        double* t = ab + idx(j + 1, c);
+        for (int i = 0; i < KL; ++i) t[i] -= col[1 + i] * u;
+      }
+    } else {
+      for (int i = 1; i <= km; ++i) col[i] *= r;
+      for (int c = j + 1; c <= ju; ++c) {
+        const double u = ab[idx(j, c)];
+        if (u == 0.0) continue;
+        double* t = ab + idx(j + 1, c);
+        for (int i = 0; i < km; ++i) t[i] -= col[1 + i] * u;
+      }
+    }
+  }
+  return info;
+}
+
+}  // namespace
 
 BandedMatrix::BandedMatrix(int n, int kl, int ku) : n_(n), kl_(kl), ku_(ku), ldab_(2 * kl + ku + 1) {
   if (n <= 0 || kl < 0 || ku < 0)
@@ -29,17 +88,6 @@ void BandedMatrix::setZero() {
   factorized_ = false;
 }
 
-// LAPACK band storage: A(i, j) lives at AB(kl + ku + i - j, j) (0-based), column-major.
-double& BandedMatrix::at(int i, int j) {
-  assert(i >= 0 && i < n_ && j >= 0 && j < n_ && inBand(i, j));
-  return ab_[static_cast<std::size_t>(kl_ + ku_ + i - j) + static_cast<std::size_t>(j) * ldab_];
-}
-
-double BandedMatrix::get(int i, int j) const {
-  if (!inBand(i, j)) return 0.0;
-  return ab_[static_cast<std::size_t>(kl_ + ku_ + i - j) + static_cast<std::size_t>(j) * ldab_];
-}
-
 Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
   assert(!factorized_);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(n_);
@@ -52,19 +100,43 @@ Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
 
 int BandedMatrix::factorize() {
   int info = 0;
-  dgbtrf_(&n_, &n_, &kl_, &ku_, ab_.data(), &ldab_, ipiv_.data(), &info);
-  if (info < 0) throw std::logic_error("dgbtrf: illegal argument");
+  if (kl_ == 12 && ku_ == 10)
+    info = bandFactor<12, 10>(n_, ab_.data(), ipiv_.data());
+  else if (kl_ == 8 && ku_ == 8)
+    info = bandFactor<8, 8>(n_, ab_.data(), ipiv_.data());
+  else {
+    dgbtrf_(&n_, &n_, &kl_, &ku_, ab_.data(), &ldab_, ipiv_.data(), &info);
+    if (info < 0) throw std::logic_error("dgbtrf: illegal argument");
+  }
   factorized_ = (info == 0);
   return info;
 }
 
+// dgbtrs ('N', one right-hand side) written out: the row interchanges and unit lower factor
+// column by column, then the banded upper factor (bandwidth kl + ku) by back substitution.
 void BandedMatrix::solve(Eigen::VectorXd& b) const {
   if (!factorized_) throw std::logic_error("BandedMatrix::solve before a successful factorize()");
-  const char trans = 'N';
-  const int nrhs = 1;
-  int info = 0;
-  dgbtrs_(&trans, &n_, &kl_, &ku_, &nrhs, ab_.data(), &ldab_, ipiv_.data(), b.data(), &n_, &info, 1);
-  if (info != 0) throw std::logic_error("dgbtrs: illegal argument");
+  if (b.size() != n_) throw std::invalid_argument("BandedMatrix::solve: right-hand side of wrong size");
+  const int kv = kl_ + ku_;
+  const double* ab = ab_.data();
+  double* x = b.data();
+  for (int j = 0; j + 1 < n_; ++j) {
+    const int l = ipiv_[static_cast<std::size_t>(j)] - 1;
+    if (l != j) std::swap(x[l], x[j]);
+    const double xj = x[j];
+    if (xj == 0.0) continue;
+    const int lm = std::min(kl_, n_ - 1 - j);
+    const double* col = ab + kv + 1 + static_cast<std::size_t>(j) * ldab_;
+    for (int i = 0; i < lm; ++i) x[j + 1 + i] -= col[i] * xj;
+  }
+  for (int j = n_ - 1; j >= 0; --j) {
+    if (x[j] == 0.0) continue;
+    const double* col = ab + static_cast<std::size_t>(j) * ldab_;  // A(i, j) = col[kv + i - j]
+    x[j] /= col[kv];
+    const double t = x[j];
+    const int i0 = std::max(0, j - kv);
+    for (int i = j - 1; i >= i0; --i) x[i] -= t * col[kv + i - j];
+  }
 }
 
 }  // namespace core

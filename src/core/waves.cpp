@@ -221,6 +221,7 @@ WaveField::WaveField(const WaveSpec& spec, double depth, double gravity) : depth
       c.direction = spec.direction;
       c.phase = 0.0;  // crest at the origin at t = 0
       components_.push_back(c);
+      precompute();
       return;
     }
     case WaveSpec::Type::Jonswap:
@@ -254,6 +255,34 @@ WaveField::WaveField(const WaveSpec& spec, double depth, double gravity) : depth
     const double scale = std::sqrt(spec.hs * spec.hs / 16.0 / variance);
     for (auto& c : components_) c.amplitude *= scale;
   }
+  precompute();
+}
+
+void WaveField::precompute() {
+  kin_.clear();
+  kin_.reserve(components_.size());
+  z_all_negligible_ = -std::numeric_limits<double>::infinity();
+  bool all_deep = !components_.empty();
+  double lowest_relevant = std::numeric_limits<double>::infinity();
+  for (const auto& c : components_) {
+    Kinematics q;
+    q.aw = c.amplitude * c.omega;
+    q.cd = std::cos(c.direction);
+    q.sd = std::sin(c.direction);
+    q.deep = c.k * depth_ > kDeepKh;
+    if (q.deep) {
+      q.den = -std::expm1(-2.0 * c.k * depth_);
+      q.e2kh = std::exp(-2.0 * c.k * depth_);
+      // aw e^{k z} < kNegligibleVelocity  <=>  z < ln(kNegligibleVelocity / aw) / k (k > 0 here).
+      q.z_skip = q.aw > 0.0 ? std::log(kNegligibleVelocity / q.aw) / c.k : std::numeric_limits<double>::infinity();
+      lowest_relevant = std::min(lowest_relevant, q.z_skip);
+    } else {
+      q.den = std::sinh(c.k * depth_);
+      all_deep = false;
+    }
+    kin_.push_back(q);
+  }
+  if (all_deep) z_all_negligible_ = lowest_relevant;
 }
 
 double WaveField::rampFactor(double t) const {
@@ -298,18 +327,38 @@ void WaveField::velocity(double x, double y, double z, double t, double& vx, dou
   vx = vy = vz = 0.0;
   if (components_.empty()) return;
   const double zc = std::min(0.0, std::max(-depth_, z));
-  for (const auto& c : components_) {
-    const double aw = c.amplitude * c.omega;
-    // In deep water the factors are about e^{kz}: skip a component whose velocity at this depth
-    // is below kNegligibleVelocity (most of a deep line sees none of the short waves).
-    if (c.k * depth_ > kDeepKh && aw * std::exp(c.k * zc) < kNegligibleVelocity) continue;
+  // Every component deep and negligible at this depth (the skip test below for each of them).
+  if (zc < z_all_negligible_) return;
+  for (std::size_t i = 0; i < components_.size(); ++i) {
+    const WaveComponent& c = components_[i];
+    const Kinematics& q = kin_[i];
     double ch, sh;
-    depthFactors(c.k, zc, depth_, ch, sh);
-    const double th = phaseOf(c, x, y, t);
-    const double uh = aw * ch * std::cos(th);
-    vx += uh * std::cos(c.direction);
-    vy += uh * std::sin(c.direction);
-    vz += aw * sh * std::sin(th);
+    if (q.deep) {
+      // In deep water the factors are about e^{kz}: skip a component whose velocity at this
+      // depth is below kNegligibleVelocity (most of a deep line sees none of the short waves).
+      if (zc < q.z_skip) continue;
+      // depthFactors' exponential form: (e^{kz} +- e^{-k(z+2h)}) / (1 - e^{-2kh}).
+      const double e1 = std::exp(c.k * zc);
+      if (q.aw * e1 < kNegligibleVelocity) continue;
+      const double e2 = q.e2kh / e1;
+      ch = (e1 + e2) / q.den;
+      sh = (e1 - e2) / q.den;
+    } else if (q.den > 0.0) {
+      // depthFactors with sinh(k h) from the constructor and cosh, sinh of k (z + h) from one
+      // exponential (k (z + h) is in [0, 20] here; the rounding of the difference is absolute,
+      // ~1e-16 of the component's velocity).
+      const double e = std::exp(c.k * (zc + depth_));
+      const double ei = 1.0 / e;
+      ch = 0.5 * (e + ei) / q.den;
+      sh = 0.5 * (e - ei) / q.den;
+    } else {
+      depthFactors(c.k, zc, depth_, ch, sh);
+    }
+    const double th = c.k * (x * q.cd + y * q.sd) - c.omega * t + c.phase;
+    const double uh = q.aw * ch * std::cos(th);
+    vx += uh * q.cd;
+    vy += uh * q.sd;
+    vz += q.aw * sh * std::sin(th);
   }
   const double r = rampFactor(t);
   vx *= r;

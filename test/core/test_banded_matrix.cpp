@@ -38,10 +38,13 @@ Eigen::VectorXd randomVector(int n, std::mt19937& rng) {
   return v;
 }
 
-// (n, kl, ku): square, tridiagonal, unequal bands both ways, diagonal only, band wider than n.
+// (n, kl, ku): square, tridiagonal, unequal bands both ways, diagonal only, band wider than n;
+// the last rows are the bandwidths with a compiled kernel, (12, 10) dynamics and (8, 8) statics,
+// from smaller than the band to many times it.
 const std::vector<std::tuple<int, int, int>> kShapes = {
     {1, 0, 0}, {5, 1, 1}, {7, 2, 0}, {7, 0, 3}, {12, 3, 1}, {12, 1, 4},
-    {30, 4, 7}, {30, 7, 2}, {60, 5, 5}, {60, 9, 3}, {6, 8, 8}, {40, 0, 0}};
+    {30, 4, 7}, {30, 7, 2}, {60, 5, 5}, {60, 9, 3}, {6, 8, 8}, {40, 0, 0},
+    {1, 12, 10}, {9, 12, 10}, {23, 12, 10}, {60, 12, 10}, {3, 8, 8}, {17, 8, 8}, {60, 8, 8}};
 
 }  // namespace
 
@@ -142,17 +145,18 @@ TEST(BandedMatrix, SingularMatrixReportsZeroPivotColumn) {
   // A zero column c stays zero through elimination, so U(c, c) == 0 exactly and dgbtrf reports
   // k = c + 1 (unless an earlier column is already singular, which it is not here).
   std::mt19937 rng(99);
-  for (int c : {0, 3, 7}) {
-    BandedMatrix A(8, 2, 3);
-    fillRandom(A, rng);
-    for (int i = 0; i < 8; ++i)
-      if (A.inBand(i, c)) A.at(i, c) = 0.0;
-    const int k = A.factorize();
-    EXPECT_EQ(k, c + 1) << "zero column " << c;
-    EXPECT_FALSE(A.factorized());
-    Eigen::VectorXd b = Eigen::VectorXd::Ones(8);
-    EXPECT_THROW(A.solve(b), std::logic_error);
-  }
+  for (const auto& [n, kl, ku] : {std::tuple<int, int, int>{8, 2, 3}, {40, 12, 10}, {30, 8, 8}})
+    for (int c : {0, 3, 7, n - 1}) {
+      BandedMatrix A(n, kl, ku);
+      fillRandom(A, rng);
+      for (int i = 0; i < n; ++i)
+        if (A.inBand(i, c)) A.at(i, c) = 0.0;
+      const int k = A.factorize();
+      EXPECT_EQ(k, c + 1) << "zero column " << c << " n=" << n << " kl=" << kl << " ku=" << ku;
+      EXPECT_FALSE(A.factorized());
+      Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+      EXPECT_THROW(A.solve(b), std::logic_error);
+    }
   // Two equal rows of small integers: elimination of the second by the first is exact.
   BandedMatrix B(3, 1, 1);
   B.at(0, 0) = 1.0; B.at(0, 1) = 2.0;

@@ -61,7 +61,20 @@ class WaveField {
 
  private:
   double rampFactor(double t) const;
+  /// Per-component constants of velocity(), computed once in the constructor (the velocity is
+  /// evaluated at every node in every Newton iteration of the dynamic solver).
+  struct Kinematics {
+    double aw = 0.0;        ///< amplitude * omega [m/s]
+    double cd = 1.0, sd = 0.0;  ///< cos and sin of the direction
+    bool deep = false;      ///< k * depth above the deep-water threshold (exponential form)
+    double den = 1.0;       ///< deep: 1 - e^{-2 k h}; otherwise sinh(k h)
+    double e2kh = 0.0;      ///< deep: e^{-2 k h}
+    double z_skip = 0.0;    ///< deep: below this elevation the component's velocity is negligible
+  };
+  void precompute();
   std::vector<WaveComponent> components_;
+  std::vector<Kinematics> kin_;
+  double z_all_negligible_ = 0.0;  ///< below this elevation every component is negligible
   double depth_ = 100.0;
   double ramp_ = 0.0;
 };
