@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "mooring_dynamics/core/adaptive_mesh.hpp"
+#include "mooring_dynamics/core/dynamic_interval.hpp"
 #include "mooring_dynamics/core/equations2d_dynamic.hpp"
 #include "mooring_dynamics/core/mesh.hpp"
 #include "mooring_dynamics/core/newton.hpp"
@@ -105,7 +106,16 @@ struct DynamicSolver2D::Impl {
 class DynamicStepSystem : public NewtonSystem {
  public:
   DynamicStepSystem(const DynamicSolver2D::Impl& im, double t_new, double dt, const TopInput& top)
-      : im_(im), t_(t_new), dt_(dt), top_(top) {}
+      : im_(im), t_(t_new), dt_(dt), top_(top) {
+    // cos and sin of every node's inclination at the previous level: fixed during the step.
+    const int n = im_.nodes();
+    cp_.resize(static_cast<std::size_t>(n));
+    spr_.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      cp_[static_cast<std::size_t>(j)] = std::cos(im_.Y[N * j + PHI]);
+      spr_[static_cast<std::size_t>(j)] = std::sin(im_.Y[N * j + PHI]);
+    }
+  }
 
   int size() const override { return N * im_.nodes(); }
   int lowerBandwidth() const override { return 12; }
@@ -162,41 +172,57 @@ class DynamicStepSystem : public NewtonSystem {
       J->at(4, Z) = 1.0;
     }
 
+    // Weighted rates (eq. 30) and cos, sin of the inclination at every node, once per evaluation.
+    ydw_.resize(Y.size());
+    for (Eigen::Index i = 0; i < Y.size(); ++i)
+      ydw_[i] = (1.0 - am) * (c1 * (Y[i] - Yp[i]) - c0 * Ydp[i]) + am * Ydp[i];
+    c_.resize(static_cast<std::size_t>(n));
+    s_.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      c_[static_cast<std::size_t>(j)] = std::cos(Y[N * j + PHI]);
+      s_[static_cast<std::size_t>(j)] = std::sin(Y[N * j + PHI]);
+    }
+    const StepWeights wts{ak, (1.0 - am) * c1};
+    double Jl[N][2 * N];
+
     for (int j = 0; j + 1 < n; ++j) {
       const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
       const int row = kAnchorRows + N * j;
-      AD16 y[2 * N], yd[2 * N], ydw[2 * N], yp[2 * N];
+      const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+      if (iv.h > 0.0) {
+        // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp).
+        const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
+        const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
+        const NodeView pa{Yp.data() + N * j, cp_[a], spr_[a], &im_.water[a]};
+        const NodeView pb{Yp.data() + N * (j + 1), cp_[b], spr_[b], &im_.water[b]};
+        intervalStepRows(im_.problem.environment, im_.problem.materials[iv.material], iv.h, na, nb, pa, pb,
+                         ydw_.data() + N * j, ydw_.data() + N * (j + 1), wts, im_.S.data() + N * j, R.data() + row,
+                         J ? Jl : nullptr);
+        if (J)
+          for (int q = 0; q < N; ++q)
+            for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
+        continue;
+      }
+      // Junction (pin) rows: few, left to automatic differentiation.
+      AD16 y[2 * N], ydw[2 * N], yp[2 * N];
       for (int k = 0; k < 2 * N; ++k) {
         const int idx = N * j + k;
         y[k] = AD16(Y[idx], 2 * N, k);
-        yd[k] = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
-        ydw[k] = (1.0 - am) * yd[k] + am * Ydp[idx];  // weighted rate of eq. 30
+        const AD16 yd = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
+        ydw[k] = (1.0 - am) * yd + am * Ydp[idx];  // weighted rate of eq. 30
         yp[k] = AD16(Yp[idx]);
         yp[k].derivatives().setZero(2 * N);
       }
-      const Water& wa = water_[static_cast<std::size_t>(j)];
-      const Water& wb = water_[static_cast<std::size_t>(j) + 1];
-      const Water& wpa = im_.water[static_cast<std::size_t>(j)];
-      const Water& wpb = im_.water[static_cast<std::size_t>(j) + 1];
+      const Water& wa = water_[a];
       AD16 sp[N], in1[N], in0[N], r[N];
-      int weighted;
-      if (iv.h > 0.0) {
-        const Material& m = im_.problem.materials[iv.material];
-        intervalSpatial(im_.problem.environment, m, iv.h, y, y + N, wa, wb, sp);
-        // Mass matrix at both levels (averaged below, eq. 31) applied to the weighted rate.
-        intervalInertia(im_.problem.environment, m, iv.h, y, y + N, ydw, ydw + N, wa, wb, in1);
-        intervalInertia(im_.problem.environment, m, iv.h, yp, yp + N, ydw, ydw + N, wpa, wpb, in0);
-        weighted = kWeightedRows;
-      } else {
-        junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, sp);
-        junctionInertia(im_.problem, iv, y, ydw, in1);
-        junctionInertia(im_.problem, iv, yp, ydw, in0);
-        junctionConstraints(y, y + N, sp);
-        for (int q = 2; q < N; ++q) in1[q] = in0[q] = AD16(0.0);
-        weighted = 2;
-      }
+      junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, sp);
+      junctionInertia(im_.problem, iv, y, ydw, in1);
+      junctionInertia(im_.problem, iv, yp, ydw, in0);
+      junctionConstraints(y, y + N, sp);
+      for (int q = 2; q < N; ++q) in1[q] = in0[q] = AD16(0.0);
+      constexpr int kJunctionWeighted = 2;  // the force balance; the constraints hold at the new level
       for (int q = 0; q < N; ++q) {
-        if (q < weighted)
+        if (q < kJunctionWeighted)
           // Eq. 30 with the mass matrix averaged between the levels (eq. 31) by alpha_k, not the
           // printed alpha_m: the weighted rate approximates dY/dt at the alpha_k level, and with
           // alpha_m weights a state-dependent M costs second order (measured slope 1.6 for
@@ -260,6 +286,9 @@ class DynamicStepSystem : public NewtonSystem {
   double t_, dt_;
   TopInput top_;
   mutable std::vector<Water> water_;
+  std::vector<double> cp_, spr_;  ///< cos, sin of phi at the previous level
+  std::vector<double> c_, s_;     ///< cos, sin of phi at the current iterate
+  Eigen::VectorXd ydw_;           ///< weighted rates (eq. 30) at the current iterate
 };
 
 // ------------------------------------------------------------------------------------------------
