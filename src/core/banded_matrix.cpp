@@ -73,7 +73,140 @@ int bandFactor(int n, double* ab, int* ipiv) {
   return info;
 }
 
+/// Node-by-node elimination of the box scheme's block structure (see setBlockStructure). Panel
+/// j (row-major, M x W) holds the LEAD rows left over from node j - 1 (the anchor rows for
+/// j = 0) restricted to node j's columns, and the NB rows of interval j on nodes j and j + 1.
+/// Its NB columns of node j are eliminated with partial pivoting over the panel rows; the rows
+/// not chosen as pivots carry their node j + 1 part (the Schur complement) into panel j + 1.
+/// The last panel holds the leftover rows and the NB - LEAD rows of the last node. ipiv holds
+/// the panel row chosen at each elimination step. Returns 0, or the 1-based unknown of the first
+/// zero pivot.
+template <int NB, int LEAD>
+int blockFactor(int n, int kl, int ku, const double* ab, int ldab, double* panels, int* ipiv, double* inv_diag) {
+  constexpr int M = LEAD + NB, W = 2 * NB;
+  const int kv = kl + ku;
+  auto A = [&](int i, int c) { return ab[static_cast<std::size_t>(kv + i - c) + static_cast<std::size_t>(c) * ldab]; };
+  const int nodes = n / NB;
+  for (int j = 0; j < nodes; ++j) {
+    double(*P)[W] = reinterpret_cast<double(*)[W]>(panels + static_cast<std::size_t>(j) * M * W);
+    const bool last = j + 1 == nodes;
+    const int rows = last ? NB : M, cols = last ? NB : W;
+    for (int r = 0; r < LEAD; ++r) {
+      for (int c = 0; c < NB; ++c) {
+        if (j == 0) {
+          P[r][c] = A(r, c);
+        } else {
+          const double(*Q)[W] = reinterpret_cast<const double(*)[W]>(panels + static_cast<std::size_t>(j - 1) * M * W);
+          P[r][c] = Q[NB + r][NB + c];
+        }
+      }
+      for (int c = NB; c < W; ++c) P[r][c] = 0.0;
+    }
+    for (int r = LEAD; r < rows; ++r) {
+      const int row = LEAD + NB * j + (r - LEAD);
+      for (int c = 0; c < cols; ++c) P[r][c] = A(row, NB * j + c);
+      for (int c = cols; c < W; ++c) P[r][c] = 0.0;
+    }
+    int* piv = ipiv + NB * j;
+    for (int k = 0; k < NB; ++k) {
+      int p = k;
+      double best = std::abs(P[k][k]);
+      for (int i = k + 1; i < rows; ++i)
+        if (std::abs(P[i][k]) > best) {
+          best = std::abs(P[i][k]);
+          p = i;
+        }
+      piv[k] = p;
+      if (P[p][k] == 0.0) return NB * j + k + 1;
+      // Interchange the rows from column k on: the multipliers stay where they were computed
+      // and the solve applies each interchange before its column, as with LAPACK's band LU.
+      if (p != k)
+        for (int c = k; c < W; ++c) std::swap(P[p][c], P[k][c]);
+      const double rcp = 1.0 / P[k][k];
+      inv_diag[NB * j + k] = rcp;
+      for (int i = k + 1; i < rows; ++i) {
+        const double l = P[i][k] * rcp;
+        P[i][k] = l;
+        if (l == 0.0) continue;
+        for (int c = k + 1; c < W; ++c) P[i][c] -= l * P[k][c];
+      }
+    }
+  }
+  return 0;
+}
+
+/// Solve with the panels of blockFactor: forward through the panels (interchanges, unit lower
+/// factor, leftover rows carried on), then back substitution node by node from the top.
+template <int NB, int LEAD>
+void blockSolve(int n, const double* panels, const int* ipiv, const double* inv_diag, double* b) {
+  static_assert(NB % 2 == 0, "the dot products below take two columns at a time");
+  constexpr int M = LEAD + NB, W = 2 * NB;
+  const int nodes = n / NB;
+  double carry[LEAD];
+  for (int j = 0; j < nodes; ++j) {
+    const double(*P)[W] = reinterpret_cast<const double(*)[W]>(panels + static_cast<std::size_t>(j) * M * W);
+    const bool last = j + 1 == nodes;
+    const int rows = last ? NB : M;
+    double v[M];
+    for (int r = 0; r < LEAD; ++r) v[r] = j == 0 ? b[r] : carry[r];
+    for (int r = LEAD; r < rows; ++r) v[r] = b[LEAD + NB * j + (r - LEAD)];
+    const int* piv = ipiv + NB * j;
+    for (int k = 0; k < NB; ++k) {
+      std::swap(v[k], v[piv[k]]);
+      const double vk = v[k];
+      if (vk != 0.0)
+        for (int i = k + 1; i < rows; ++i) v[i] -= P[i][k] * vk;
+    }
+    for (int r = 0; r < NB; ++r) b[NB * j + r] = v[r];  // rows of node j's panel are read
+    if (!last)
+      for (int r = 0; r < LEAD; ++r) carry[r] = v[NB + r];
+  }
+  for (int j = nodes - 1; j >= 0; --j) {
+    const double(*P)[W] = reinterpret_cast<const double(*)[W]>(panels + static_cast<std::size_t>(j) * M * W);
+    double* x = b + NB * j;
+    const double* rd = inv_diag + NB * j;
+    // U12 x_{j+1} first: eight independent dot products, then U11 by back substitution.
+    double t[NB];
+    for (int k = 0; k < NB; ++k) t[k] = x[k];
+    if (j + 1 < nodes) {
+      const double* xn = b + NB * (j + 1);
+      for (int k = 0; k < NB; ++k) {
+        double s0 = 0.0, s1 = 0.0;
+        for (int c = 0; c < NB; c += 2) {
+          s0 += P[k][NB + c] * xn[c];
+          s1 += P[k][NB + c + 1] * xn[c + 1];
+        }
+        t[k] -= s0 + s1;
+      }
+    }
+    for (int k = NB - 1; k >= 0; --k) {
+      double s = t[k];
+      for (int c = k + 1; c < NB; ++c) s -= P[k][c] * x[c];
+      x[k] = s * rd[k];
+    }
+  }
+}
+
 }  // namespace
+
+void BandedMatrix::setBlockStructure(int block, int lead) {
+  if (block == 0 && lead == 0) {
+    block_ = lead_ = 0;
+    return;
+  }
+  if (block <= 0 || lead < 0 || lead > block || n_ % block != 0 || kl_ < lead + block - 1 ||
+      ku_ < 2 * block - 1 - lead)
+    throw std::invalid_argument("BandedMatrix::setBlockStructure(" + std::to_string(block) + ", " +
+                                std::to_string(lead) + "): does not fit n = " + std::to_string(n_) +
+                                ", kl = " + std::to_string(kl_) + ", ku = " + std::to_string(ku_));
+  block_ = block;
+  lead_ = lead;
+  factorized_ = false;
+  if (block_ == 8 && lead_ == 5 && panels_.size() != static_cast<std::size_t>(n_ / 8) * 13 * 16) {
+    panels_.assign(static_cast<std::size_t>(n_ / 8) * 13 * 16, 0.0);
+    inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
+  }
+}
 
 BandedMatrix::BandedMatrix(int n, int kl, int ku) : n_(n), kl_(kl), ku_(ku), ldab_(2 * kl + ku + 1) {
   if (n <= 0 || kl < 0 || ku < 0)
@@ -100,7 +233,9 @@ Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
 
 int BandedMatrix::factorize() {
   int info = 0;
-  if (kl_ == 12 && ku_ == 10)
+  if (block_ == 8 && lead_ == 5)
+    info = blockFactor<8, 5>(n_, kl_, ku_, ab_.data(), ldab_, panels_.data(), ipiv_.data(), inv_diag_.data());
+  else if (kl_ == 12 && ku_ == 10)
     info = bandFactor<12, 10>(n_, ab_.data(), ipiv_.data());
   else if (kl_ == 8 && ku_ == 8)
     info = bandFactor<8, 8>(n_, ab_.data(), ipiv_.data());
@@ -117,6 +252,10 @@ int BandedMatrix::factorize() {
 void BandedMatrix::solve(Eigen::VectorXd& b) const {
   if (!factorized_) throw std::logic_error("BandedMatrix::solve before a successful factorize()");
   if (b.size() != n_) throw std::invalid_argument("BandedMatrix::solve: right-hand side of wrong size");
+  if (block_ == 8 && lead_ == 5) {
+    blockSolve<8, 5>(n_, panels_.data(), ipiv_.data(), inv_diag_.data(), b.data());
+    return;
+  }
   const int kv = kl_ + ku_;
   const double* ab = ab_.data();
   double* x = b.data();

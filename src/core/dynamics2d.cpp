@@ -49,6 +49,7 @@ struct DynamicSolver2D::Impl {
 
   double chi[N];
   Totals totals;
+  BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
@@ -120,6 +121,9 @@ class DynamicStepSystem : public NewtonSystem {
   int size() const override { return N * im_.nodes(); }
   int lowerBandwidth() const override { return 12; }
   int upperBandwidth() const override { return 10; }
+  // Node-by-node elimination of the same matrix (every row couples node j and j + 1 only).
+  int blockSize() const override { return N; }
+  int leadingRows() const override { return kAnchorRows; }
   double scale(int i) const override { return im_.chi[i % N]; }
   std::string describe(int i) const override {
     const std::size_t j = static_cast<std::size_t>(i / N);
@@ -427,7 +431,7 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   no.max_iterations = im.opt.max_iterations;
   no.mu0 = im.opt.relaxation;
   no.adaptive = im.opt.adaptive_relaxation;
-  const SolverSummary s = solveNewton(sys, Y, no);
+  const SolverSummary s = solveNewton(sys, Y, no, &im.newton_matrix);
   rep.newton_iterations += s.iterations;
   im.totals.newton_iterations += s.iterations;
   if (!s.converged) {

@@ -178,3 +178,79 @@ TEST(BandedMatrix, SolveBeforeFactorizeThrows) {
   EXPECT_FALSE(A.factorized());
   EXPECT_THROW(A.solve(b), std::logic_error);
 }
+
+// The sparsity of the dynamic Newton matrix inside its band (kl = 12, ku = 10): 5 anchor rows on
+// node 0, 8 rows per interval on nodes j and j + 1, 3 top rows on the last node, with a quarter
+// of the block entries zero at random and a few all-zero leading columns in the blocks, so that
+// rows start and end at different columns and the pivots move rows with different extents.
+// Band LU and the node-by-node block elimination (setBlockStructure(8, 5)) must both match
+// dense LU on it.
+TEST(BandedMatrix, BoxSchemeSparsityMatchesDensePartialPivLU) {
+  constexpr int kN = 8, kAnchor = 5;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::bernoulli_distribution zero(0.25);
+  int solved = 0;
+  for (bool blocks : {false, true})
+  for (int nodes : {1, 2, 3, 10, 40}) {
+    for (int trial = 0; trial < 5; ++trial) {
+      const int n = kN * nodes;
+      BandedMatrix A(n, 12, 10);
+      if (blocks) A.setBlockStructure(kN, kAnchor);
+      Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
+      auto set = [&](int r, int c) {
+        if (zero(rng)) return;
+        D(r, c) = A.at(r, c) = u(rng);
+      };
+      for (int r = 0; r < kAnchor; ++r)
+        for (int c = 0; c < kN; ++c) set(r, c);
+      for (int j = 0; j + 1 < nodes; ++j)
+        for (int q = 0; q < kN; ++q)
+          for (int c = kN * j + (q % 3); c < kN * (j + 2); ++c) set(kAnchor + kN * j + q, c);
+      for (int r = n - 3; r < n; ++r)
+        for (int c = n - kN; c < n; ++c) set(r, c);
+      if (std::abs(D.determinant()) < 1e-8) continue;  // a random pattern may be singular
+      const Eigen::VectorXd b = randomVector(n, rng);
+      const Eigen::VectorXd x_dense = D.partialPivLu().solve(b);
+      ASSERT_EQ(A.factorize(), 0) << "nodes " << nodes << " trial " << trial;
+      Eigen::VectorXd x = b;
+      A.solve(x);
+      EXPECT_LE((D * x - b).norm(), kSolveRelTol * (D.norm() * x.norm() + b.norm()))
+          << "nodes " << nodes << " trial " << trial;
+      EXPECT_LE((x - x_dense).norm(), 1e-6 * x_dense.norm()) << "nodes " << nodes << " trial " << trial;
+      ++solved;
+    }
+  }
+  EXPECT_GT(solved, 40);  // most random patterns are regular
+}
+
+TEST(BandedMatrix, BlockStructureMustFitTheBand) {
+  BandedMatrix A(80, 12, 10);
+  EXPECT_NO_THROW(A.setBlockStructure(8, 5));
+  EXPECT_NO_THROW(A.setBlockStructure(0, 0));  // back to the band LU
+  BandedMatrix narrow(80, 11, 10);
+  EXPECT_THROW(narrow.setBlockStructure(8, 5), std::invalid_argument);
+  BandedMatrix odd(81, 12, 10);
+  EXPECT_THROW(odd.setBlockStructure(8, 5), std::invalid_argument);
+}
+
+// A zero column of a node is reported as that unknown by the block elimination as well.
+TEST(BandedMatrix, BlockEliminationReportsZeroPivotColumn) {
+  std::mt19937 rng(5);
+  for (int c : {0, 13, 39}) {
+    BandedMatrix A(40, 12, 10);
+    A.setBlockStructure(8, 5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int r = 0; r < 5; ++r)
+      for (int k = 0; k < 8; ++k) A.at(r, k) = u(rng);
+    for (int j = 0; j + 1 < 5; ++j)
+      for (int q = 0; q < 8; ++q)
+        for (int k = 8 * j; k < 8 * (j + 2); ++k) A.at(5 + 8 * j + q, k) = u(rng);
+    for (int r = 37; r < 40; ++r)
+      for (int k = 32; k < 40; ++k) A.at(r, k) = u(rng);
+    for (int i = 0; i < 40; ++i)
+      if (A.inBand(i, c)) A.at(i, c) = 0.0;
+    EXPECT_EQ(A.factorize(), c + 1) << "zero column " << c;
+    EXPECT_FALSE(A.factorized());
+  }
+}

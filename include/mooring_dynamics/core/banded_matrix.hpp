@@ -35,6 +35,18 @@ class BandedMatrix {
   }
   bool inBand(int i, int j) const { return j - i <= ku_ && i - j <= kl_; }
 
+  /// Declare the box scheme's block structure: unknowns in blocks of `block` (one node), the
+  /// first `lead` rows on block 0 only, then `block` rows at a time on blocks (j, j + 1) (one
+  /// half-grid interval), the last block - lead rows on the last block. Entries outside this
+  /// pattern must be zero: factorize() then eliminates node by node on dense panels (the
+  /// candidate rows of a node's columns are the lead rows left over from the node before and
+  /// the rows of its interval), with the same partial pivoting as the band LU (every other row
+  /// of the band is zero in those columns), a third of the multiply-adds and no stride-ldab
+  /// access. Only (block, lead) = (8, 5), the dynamic solver's layout, has a kernel; other
+  /// values, or (0, 0), select the band LU. Throws std::invalid_argument if the band cannot
+  /// hold the pattern.
+  void setBlockStructure(int block, int lead);
+
   /// y = A x using the unfactored matrix.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
 
@@ -54,6 +66,10 @@ class BandedMatrix {
   std::vector<double> ab_;
   std::vector<int> ipiv_;
   bool factorized_ = false;
+  int block_ = 0, lead_ = 0;     ///< block structure (setBlockStructure), 0: plain band
+  std::vector<double> panels_;   ///< factored panels of the block elimination
+  std::vector<double> inv_diag_; ///< reciprocals of U's diagonal (block elimination)
+
 };
 
 }  // namespace core
