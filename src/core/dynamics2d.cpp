@@ -36,6 +36,7 @@ struct DynamicSolver2D::Impl {
   Problem problem;
   Mesh mesh;
   WaveField waves;
+  mutable WaveVelocityCache wave_cache;  ///< wave kinematics at the nodes (cos, sin reused)
   GeneralizedAlpha ga;
   DynamicOptions opt;
   std::function<TopInput(double)> top;
@@ -54,7 +55,8 @@ struct DynamicSolver2D::Impl {
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 
-  Water waterAt(double x, double z, double time) const {
+  /// Water at node j, at (x, z) and the time last given to wave_cache.setTime.
+  Water waterAt(int j, double x, double z) const {
     Water w;
     double ux, uy;
     problem.environment.currentAt(z, ux, uy);
@@ -68,9 +70,9 @@ struct DynamicSolver2D::Impl {
       problem.environment.currentAt(z - kDz, um, vy);
       w.dwx_dz = (up - um) / (2.0 * kDz);
     }
-    if (!waves.empty() && z <= 0.0) {
-      double vx, vy, vz;
-      waves.velocity(x, 0.0, z, time, vx, vy, vz);
+    if (!wave_cache.empty() && z <= 0.0) {
+      double vx, vz;
+      wave_cache.velocity(static_cast<std::size_t>(j), x, z, vx, vz);  // WaveField::velocity(x, 0, z, t)
       w.wx += vx;
       w.wz += vz;
     }
@@ -79,7 +81,8 @@ struct DynamicSolver2D::Impl {
 
   void waterField(const Eigen::VectorXd& y, double time, std::vector<Water>& out) const {
     out.resize(static_cast<std::size_t>(nodes()));
-    for (int j = 0; j < nodes(); ++j) out[static_cast<std::size_t>(j)] = waterAt(y[N * j + X], y[N * j + Z], time);
+    wave_cache.setTime(time);
+    for (int j = 0; j < nodes(); ++j) out[static_cast<std::size_t>(j)] = waterAt(j, y[N * j + X], y[N * j + Z]);
   }
 
   /// Spatial rows of every interval at state y (double).
@@ -341,6 +344,7 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
                              im.statics.summary.message);
   if (problem.environment.waves.type != WaveSpec::Type::None)
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
 
   // Top motion: the 3-D source projected on the x-z plane, started at the static top (y = 0).
   const NodeState& topNode = im.statics.nodes.back();

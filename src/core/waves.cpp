@@ -396,5 +396,108 @@ void WaveField::acceleration(double x, double y, double z, double t, double& ax,
   az = r * az + dr * vz;
 }
 
+// ---------------------------------------------------------------------------------------------
+// WaveVelocityCache
+
+WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points) : field_(field) {
+  if (empty()) return;
+  const WaveField& f = *field_;
+  nc_ = f.components_.size();
+  // e^{-k(z+2h)} / e^{kz} = e^{-2k(z+h)} < 1e-17 (below half an ulp of e^{kz}) when k (z + h) > 19.6.
+  constexpr double kHalfUlpExponent = 19.6;
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const WaveComponent& c = f.components_[i];
+    const WaveField::Kinematics& q = f.kin_[i];
+    Comp m;
+    m.k = c.k;
+    m.omega = c.omega;
+    m.phase = c.phase;
+    m.aw = q.aw;
+    m.cd = q.cd;
+    m.kx = c.k * q.cd;
+    m.deep = q.deep;
+    m.inv_den = 1.0 / q.den;
+    m.e2kh = q.e2kh;
+    m.z_e2 = q.deep ? -f.depth_ + kHalfUlpExponent / c.k : 0.0;
+    m.z_skip = q.deep ? q.z_skip : -std::numeric_limits<double>::infinity();
+    m.hyperbolic = q.den > 0.0;
+    kx_max_ = std::max(kx_max_, std::abs(m.kx));
+    comps_.push_back(m);
+  }
+  std::stable_sort(comps_.begin(), comps_.end(), [](const Comp& a, const Comp& b) { return a.z_skip < b.z_skip; });
+  cos_a_.assign(nc_, 1.0);
+  sin_a_.assign(nc_, 0.0);
+  x_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
+  cos_b_.assign(points * nc_, 1.0);
+  sin_b_.assign(points * nc_, 0.0);
+}
+
+void WaveVelocityCache::setTime(double t) {
+  if (empty() || (have_time_ && t == t_)) return;
+  t_ = t;
+  have_time_ = true;
+  ramp_ = field_->rampFactor(t);
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const double a = comps_[i].phase - comps_[i].omega * t;
+    cos_a_[i] = std::cos(a);
+    sin_a_[i] = std::sin(a);
+  }
+}
+
+void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, double& vz) {
+  vx = vz = 0.0;
+  if (empty()) return;
+  const WaveField& f = *field_;
+  const double zc = std::min(0.0, std::max(-f.depth_, z));
+  if (zc < f.z_all_negligible_) return;
+  double* cb = cos_b_.data() + p * nc_;
+  double* sb = sin_b_.data() + p * nc_;
+  if (!(std::abs(x - x_ref_[p]) * kx_max_ <= kTaylorRadius)) {  // also when x_ref is NaN
+    x_ref_[p] = x;
+    for (std::size_t i = 0; i < nc_; ++i) {
+      cb[i] = std::cos(comps_[i].kx * x);
+      sb[i] = std::sin(comps_[i].kx * x);
+    }
+  }
+  const double dx = x - x_ref_[p];
+  double sx = 0.0, sz = 0.0;  // local sums (the outputs could alias the tables)
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const Comp& c = comps_[i];
+    double ch, sh;
+    if (c.deep) {
+      // As WaveField::velocity: negligible components of deep water are left out (all the
+      // following ones are too: sorted by z_skip).
+      if (zc < c.z_skip) break;
+      const double e1 = std::exp(c.k * zc);
+      if (c.aw * e1 < kNegligibleVelocity) continue;
+      const double e2 = zc > c.z_e2 ? 0.0 : c.e2kh / e1;
+      ch = (e1 + e2) * c.inv_den;
+      sh = (e1 - e2) * c.inv_den;
+    } else if (c.hyperbolic) {
+      const double e = std::exp(c.k * (zc + f.depth_));
+      const double ei = 1.0 / e;
+      ch = 0.5 * (e + ei) * c.inv_den;
+      sh = 0.5 * (e - ei) * c.inv_den;
+    } else {
+      depthFactors(c.k, zc, f.depth_, ch, sh);
+    }
+    // cos, sin of d = kx (x - x_ref), |d| <= kTaylorRadius, by their Taylor series (Horner).
+    const double d = c.kx * dx, d2 = d * d;
+    const double cd =
+        1.0 + d2 * (-1.0 / 2 + d2 * (1.0 / 24 + d2 * (-1.0 / 720 + d2 * (1.0 / 40320 + d2 * (-1.0 / 3628800 +
+        d2 * (1.0 / 479001600 + d2 * (-1.0 / 87178291200.0)))))));
+    const double sd =
+        d * (1.0 + d2 * (-1.0 / 6 + d2 * (1.0 / 120 + d2 * (-1.0 / 5040 + d2 * (1.0 / 362880 + d2 * (-1.0 / 39916800 +
+        d2 * (1.0 / 6227020800.0)))))));
+    const double cbx = cb[i] * cd - sb[i] * sd, sbx = sb[i] * cd + cb[i] * sd;  // B at x
+    const double cth = cbx * cos_a_[i] - sbx * sin_a_[i];                      // B + A
+    const double sth = sbx * cos_a_[i] + cbx * sin_a_[i];
+    sx += c.aw * ch * cth * c.cd;
+    sz += c.aw * sh * sth;
+  }
+  vx = sx * ramp_;
+  vz = sz * ramp_;
+}
+
 }  // namespace core
 }  // namespace mooring_dynamics
