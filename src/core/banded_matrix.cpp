@@ -10,10 +10,41 @@ void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* a
              int* ipiv, int* info);
 }
 
+// The elimination kernels are compiled twice on x86-64 with GCC or Clang: for the baseline
+// instruction set and with AVX2 (four doubles per operation); the loader picks the version the
+// processor supports (function multiversioning: no change to the build flags or to the
+// library's portability). Both do the same operations in the same order.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(MD_NO_MULTIVERSION)
+#define MD_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define MD_SIMD_CLONES
+#endif
+
 namespace mooring_dynamics {
 namespace core {
 
 namespace {
+
+/// r[0..len) -= l * p[0..len) for len a multiple of 4, in four-double vectors where the compiler
+/// has them (GCC/Clang vector extensions: two SSE2 operations each in the baseline clone, one
+/// AVX2 operation in the other); a plain loop elsewhere.
+#if defined(__GNUC__) || defined(__clang__)
+typedef double Vec4 __attribute__((vector_size(32), aligned(8), may_alias));
+template <int LEN>
+inline void subtractScaled(double* __restrict r, const double* __restrict p, double l) {
+  static_assert(LEN % 4 == 0, "four doubles at a time");
+  for (int c = 0; c < LEN; c += 4) {
+    Vec4 a = *reinterpret_cast<Vec4*>(r + c);
+    a -= l * *reinterpret_cast<const Vec4*>(p + c);
+    *reinterpret_cast<Vec4*>(r + c) = a;
+  }
+}
+#else
+template <int LEN>
+inline void subtractScaled(double* __restrict r, const double* __restrict p, double l) {
+  for (int c = 0; c < LEN; ++c) r[c] -= l * p[c];
+}
+#endif
 
 /// In-place band LU with partial pivoting of an n x n matrix in LAPACK band storage (leading
 /// dimension 2 kl + ku + 1), the algorithm of LAPACK's dgbtf2 step by step (same pivots: the
@@ -21,7 +52,7 @@ namespace {
 /// compile-time constants so that the column loops have fixed lengths. ipiv is 1-based as in
 /// LAPACK. Returns 0, or the 1-based column of the first exactly zero pivot.
 template <int KL, int KU>
-int bandFactor(int n, double* ab, int* ipiv) {
+MD_SIMD_CLONES int bandFactor(int n, double* ab, int* ipiv) {
   constexpr int KV = KL + KU;
   constexpr int LD = 2 * KL + KU + 1;
   // Element A(i, c) of the band: ab[KV + i - c + c LD] = ab[KV + i + c (LD - 1)].
@@ -57,8 +88,9 @@ int bandFactor(int n, double* ab, int* ipiv) {
       for (int c = j + 1; c <= ju; ++c) {
         const double u = ab[idx(j, c)];
         if (u == 0.0) continue;
-        double* t = ab + idx(j + 1, c);
-        for (int i = 0; i < KL; ++i) t[i] -= col[1 + i] * u;
+        double* __restrict t = ab + idx(j + 1, c);
+        const double* __restrict l = col + 1;
+        for (int i = 0; i < KL; ++i) t[i] -= l[i] * u;
       }
     } else {
       for (int i = 1; i <= km; ++i) col[i] *= r;
@@ -82,8 +114,9 @@ int bandFactor(int n, double* ab, int* ipiv) {
 /// the panel row chosen at each elimination step. Returns 0, or the 1-based unknown of the first
 /// zero pivot.
 template <int NB, int LEAD>
-int blockFactor(int n, int kl, int ku, const double* ab, int ldab, double* panels, int* ipiv, double* inv_diag) {
-  constexpr int M = LEAD + NB, W = 2 * NB;
+MD_SIMD_CLONES int blockFactor(int n, int kl, int ku, const double* ab, int ldab, double* panels, double* lower, int* ipiv,
+                double* inv_diag) {
+  constexpr int M = LEAD + NB, W = 2 * NB, LP = (M + 3) / 4 * 4;
   const int kv = kl + ku;
   auto A = [&](int i, int c) { return ab[static_cast<std::size_t>(kv + i - c) + static_cast<std::size_t>(c) * ldab]; };
   const int nodes = n / NB;
@@ -108,6 +141,8 @@ int blockFactor(int n, int kl, int ku, const double* ab, int ldab, double* panel
       for (int c = cols; c < W; ++c) P[r][c] = 0.0;
     }
     int* piv = ipiv + NB * j;
+    // Multipliers of column k in Lt[k][i] (rows i > k; zero elsewhere, padded to LP rows).
+    double(*Lt)[LP] = reinterpret_cast<double(*)[LP]>(lower + static_cast<std::size_t>(j) * NB * LP);
     for (int k = 0; k < NB; ++k) {
       int p = k;
       double best = std::abs(P[k][k]);
@@ -118,17 +153,22 @@ int blockFactor(int n, int kl, int ku, const double* ab, int ldab, double* panel
         }
       piv[k] = p;
       if (P[p][k] == 0.0) return NB * j + k + 1;
-      // Interchange the rows from column k on: the multipliers stay where they were computed
-      // and the solve applies each interchange before its column, as with LAPACK's band LU.
+      // Whole rows: left of column k both hold exact zeros. The multipliers (in L) stay where
+      // they were computed and the solve applies each interchange before its column, as with
+      // LAPACK's band LU.
       if (p != k)
-        for (int c = k; c < W; ++c) std::swap(P[p][c], P[k][c]);
+        for (int c = 0; c < W; ++c) std::swap(P[p][c], P[k][c]);
       const double rcp = 1.0 / P[k][k];
       inv_diag[NB * j + k] = rcp;
+      for (int i = 0; i < LP; ++i) Lt[k][i] = 0.0;
       for (int i = k + 1; i < rows; ++i) {
         const double l = P[i][k] * rcp;
-        P[i][k] = l;
+        Lt[k][i] = l;
         if (l == 0.0) continue;
-        for (int c = k + 1; c < W; ++c) P[i][c] -= l * P[k][c];
+        // Fixed-length row update (vectorized): the columns left of k are zero in the pivot
+        // row and stay zero; column k is eliminated exactly.
+        subtractScaled<W>(P[i], P[k], l);
+        P[i][k] = 0.0;
       }
     }
   }
@@ -138,24 +178,23 @@ int blockFactor(int n, int kl, int ku, const double* ab, int ldab, double* panel
 /// Solve with the panels of blockFactor: forward through the panels (interchanges, unit lower
 /// factor, leftover rows carried on), then back substitution node by node from the top.
 template <int NB, int LEAD>
-void blockSolve(int n, const double* panels, const int* ipiv, const double* inv_diag, double* b) {
+MD_SIMD_CLONES void blockSolve(int n, const double* panels, const double* lower, const int* ipiv, const double* inv_diag, double* b) {
   static_assert(NB % 2 == 0, "the dot products below take two columns at a time");
-  constexpr int M = LEAD + NB, W = 2 * NB;
+  constexpr int M = LEAD + NB, W = 2 * NB, LP = (M + 3) / 4 * 4;
   const int nodes = n / NB;
-  double carry[LEAD];
+  double carry[LEAD] = {};
   for (int j = 0; j < nodes; ++j) {
-    const double(*P)[W] = reinterpret_cast<const double(*)[W]>(panels + static_cast<std::size_t>(j) * M * W);
     const bool last = j + 1 == nodes;
     const int rows = last ? NB : M;
-    double v[M];
+    double v[LP] = {};
     for (int r = 0; r < LEAD; ++r) v[r] = j == 0 ? b[r] : carry[r];
     for (int r = LEAD; r < rows; ++r) v[r] = b[LEAD + NB * j + (r - LEAD)];
     const int* piv = ipiv + NB * j;
+    const double(*Lt)[LP] = reinterpret_cast<const double(*)[LP]>(lower + static_cast<std::size_t>(j) * NB * LP);
     for (int k = 0; k < NB; ++k) {
       std::swap(v[k], v[piv[k]]);
       const double vk = v[k];
-      if (vk != 0.0)
-        for (int i = k + 1; i < rows; ++i) v[i] -= P[i][k] * vk;
+      if (vk != 0.0) subtractScaled<LP>(v, Lt[k], vk);  // Lt[k][i] = 0 for i <= k and i >= rows
     }
     for (int r = 0; r < NB; ++r) b[NB * j + r] = v[r];  // rows of node j's panel are read
     if (!last)
@@ -204,6 +243,7 @@ void BandedMatrix::setBlockStructure(int block, int lead) {
   factorized_ = false;
   if (block_ == 8 && lead_ == 5 && panels_.size() != static_cast<std::size_t>(n_ / 8) * 13 * 16) {
     panels_.assign(static_cast<std::size_t>(n_ / 8) * 13 * 16, 0.0);
+    lower_.assign(static_cast<std::size_t>(n_ / 8) * 8 * 16, 0.0);
     inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
   }
 }
@@ -234,7 +274,7 @@ Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
 int BandedMatrix::factorize() {
   int info = 0;
   if (block_ == 8 && lead_ == 5)
-    info = blockFactor<8, 5>(n_, kl_, ku_, ab_.data(), ldab_, panels_.data(), ipiv_.data(), inv_diag_.data());
+    info = blockFactor<8, 5>(n_, kl_, ku_, ab_.data(), ldab_, panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data());
   else if (kl_ == 12 && ku_ == 10)
     info = bandFactor<12, 10>(n_, ab_.data(), ipiv_.data());
   else if (kl_ == 8 && ku_ == 8)
@@ -253,7 +293,7 @@ void BandedMatrix::solve(Eigen::VectorXd& b) const {
   if (!factorized_) throw std::logic_error("BandedMatrix::solve before a successful factorize()");
   if (b.size() != n_) throw std::invalid_argument("BandedMatrix::solve: right-hand side of wrong size");
   if (block_ == 8 && lead_ == 5) {
-    blockSolve<8, 5>(n_, panels_.data(), ipiv_.data(), inv_diag_.data(), b.data());
+    blockSolve<8, 5>(n_, panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data(), b.data());
     return;
   }
   const int kv = kl_ + ku_;

@@ -68,6 +68,7 @@ class BandedMatrix {
   bool factorized_ = false;
   int block_ = 0, lead_ = 0;     ///< block structure (setBlockStructure), 0: plain band
   std::vector<double> panels_;   ///< factored panels of the block elimination
+  std::vector<double> lower_;    ///< multipliers of the block elimination
   std::vector<double> inv_diag_; ///< reciprocals of U's diagonal (block elimination)
 
 };
