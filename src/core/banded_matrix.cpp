@@ -114,11 +114,11 @@ MD_SIMD_CLONES int bandFactor(int n, double* ab, int* ipiv) {
 /// the panel row chosen at each elimination step. Returns 0, or the 1-based unknown of the first
 /// zero pivot.
 template <int NB, int LEAD>
-MD_SIMD_CLONES int blockFactor(int n, int kl, int ku, const double* ab, int ldab, double* panels, double* lower, int* ipiv,
+MD_SIMD_CLONES int blockFactor(int n, const double* rowsA, double* panels, double* lower, int* ipiv,
                 double* inv_diag) {
   constexpr int M = LEAD + NB, W = 2 * NB, LP = (M + 3) / 4 * 4;
-  const int kv = kl + ku;
-  auto A = [&](int i, int c) { return ab[static_cast<std::size_t>(kv + i - c) + static_cast<std::size_t>(c) * ldab]; };
+  // Row i of the matrix: W entries from the first column of its first node.
+  auto A = [&](int i, int c) { return rowsA[static_cast<std::size_t>(i) * W + static_cast<std::size_t>(c)]; };
   const int nodes = n / NB;
   for (int j = 0; j < nodes; ++j) {
     double(*P)[W] = reinterpret_cast<double(*)[W]>(panels + static_cast<std::size_t>(j) * M * W);
@@ -127,7 +127,7 @@ MD_SIMD_CLONES int blockFactor(int n, int kl, int ku, const double* ab, int ldab
     for (int r = 0; r < LEAD; ++r) {
       for (int c = 0; c < NB; ++c) {
         if (j == 0) {
-          P[r][c] = A(r, c);
+          P[r][c] = A(r, c);  // anchor rows: node 0
         } else {
           const double(*Q)[W] = reinterpret_cast<const double(*)[W]>(panels + static_cast<std::size_t>(j - 1) * M * W);
           P[r][c] = Q[NB + r][NB + c];
@@ -137,7 +137,7 @@ MD_SIMD_CLONES int blockFactor(int n, int kl, int ku, const double* ab, int ldab
     }
     for (int r = LEAD; r < rows; ++r) {
       const int row = LEAD + NB * j + (r - LEAD);
-      for (int c = 0; c < cols; ++c) P[r][c] = A(row, NB * j + c);
+      for (int c = 0; c < cols; ++c) P[r][c] = A(row, c);
       for (int c = cols; c < W; ++c) P[r][c] = 0.0;
     }
     int* piv = ipiv + NB * j;
@@ -229,23 +229,29 @@ MD_SIMD_CLONES void blockSolve(int n, const double* panels, const double* lower,
 }  // namespace
 
 void BandedMatrix::setBlockStructure(int block, int lead) {
+  if (block == block_ && lead == lead_) return;
+  factorized_ = false;
   if (block == 0 && lead == 0) {
     block_ = lead_ = 0;
+    std::fill(ab_.begin(), ab_.end(), 0.0);
     return;
   }
-  if (block <= 0 || lead < 0 || lead > block || n_ % block != 0 || kl_ < lead + block - 1 ||
-      ku_ < 2 * block - 1 - lead)
+  if (!(block == 8 && lead == 5) || n_ % block != 0 || kl_ < lead + block - 1 || ku_ < 2 * block - 1 - lead)
     throw std::invalid_argument("BandedMatrix::setBlockStructure(" + std::to_string(block) + ", " +
                                 std::to_string(lead) + "): does not fit n = " + std::to_string(n_) +
                                 ", kl = " + std::to_string(kl_) + ", ku = " + std::to_string(ku_));
   block_ = block;
   lead_ = lead;
-  factorized_ = false;
-  if (block_ == 8 && lead_ == 5 && panels_.size() != static_cast<std::size_t>(n_ / 8) * 13 * 16) {
-    panels_.assign(static_cast<std::size_t>(n_ / 8) * 13 * 16, 0.0);
-    lower_.assign(static_cast<std::size_t>(n_ / 8) * 8 * 16, 0.0);
-    inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
-  }
+  rows_.assign(static_cast<std::size_t>(n_) * 2 * block_, 0.0);
+  panels_.assign(static_cast<std::size_t>(n_ / 8) * 13 * 16, 0.0);
+  lower_.assign(static_cast<std::size_t>(n_ / 8) * 8 * 16, 0.0);
+  inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
+}
+
+void BandedMatrix::throwOutsidePattern(int i, int j) const {
+  throw std::out_of_range("BandedMatrix::at(" + std::to_string(i) + ", " + std::to_string(j) +
+                          "): outside the block structure (" + std::to_string(block_) + ", " +
+                          std::to_string(lead_) + ")");
 }
 
 BandedMatrix::BandedMatrix(int n, int kl, int ku) : n_(n), kl_(kl), ku_(ku), ldab_(2 * kl + ku + 1) {
@@ -257,7 +263,10 @@ BandedMatrix::BandedMatrix(int n, int kl, int ku) : n_(n), kl_(kl), ku_(ku), lda
 }
 
 void BandedMatrix::setZero() {
-  std::fill(ab_.begin(), ab_.end(), 0.0);
+  if (block_ > 0)
+    std::fill(rows_.begin(), rows_.end(), 0.0);
+  else
+    std::fill(ab_.begin(), ab_.end(), 0.0);
   factorized_ = false;
 }
 
@@ -274,7 +283,7 @@ Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
 int BandedMatrix::factorize() {
   int info = 0;
   if (block_ == 8 && lead_ == 5)
-    info = blockFactor<8, 5>(n_, kl_, ku_, ab_.data(), ldab_, panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data());
+    info = blockFactor<8, 5>(n_, rows_.data(), panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data());
   else if (kl_ == 12 && ku_ == 10)
     info = bandFactor<12, 10>(n_, ab_.data(), ipiv_.data());
   else if (kl_ == 8 && ku_ == 8)

@@ -202,10 +202,12 @@ class DynamicStepSystem : public NewtonSystem {
         const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
         const NodeView pa{Yp.data() + N * j, cp_[a], spr_[a], &im_.water[a]};
         const NodeView pb{Yp.data() + N * (j + 1), cp_[b], spr_[b], &im_.water[b]};
+        // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
+        double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
         intervalStepRows(im_.problem.environment, im_.problem.materials[iv.material], iv.h, na, nb, pa, pb,
                          ydw_.data() + N * j, ydw_.data() + N * (j + 1), wts, im_.S.data() + N * j, R.data() + row,
-                         J ? Jl : nullptr);
-        if (J)
+                         J ? Jrows : nullptr);
+        if (J && Jrows == Jl)
           for (int q = 0; q < N; ++q)
             for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
         continue;

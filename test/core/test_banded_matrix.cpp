@@ -232,6 +232,20 @@ TEST(BandedMatrix, BlockStructureMustFitTheBand) {
   EXPECT_THROW(narrow.setBlockStructure(8, 5), std::invalid_argument);
   BandedMatrix odd(81, 12, 10);
   EXPECT_THROW(odd.setBlockStructure(8, 5), std::invalid_argument);
+  EXPECT_THROW(A.setBlockStructure(6, 3), std::invalid_argument);  // no kernel for it
+  // In the structure: rows by node, and nothing outside the pattern.
+  A.setBlockStructure(8, 5);
+  EXPECT_TRUE(A.inPattern(0, 7));
+  EXPECT_FALSE(A.inPattern(0, 8));     // anchor rows: node 0 only
+  EXPECT_TRUE(A.inPattern(5, 15));     // interval 0: nodes 0 and 1
+  EXPECT_FALSE(A.inPattern(13, 7));    // interval 1 starts at node 1
+  EXPECT_FALSE(A.inPattern(79, 71));   // top rows: the last node only
+  EXPECT_TRUE(A.inPattern(79, 72));
+  EXPECT_THROW(A.at(0, 8), std::out_of_range);
+  A.at(5, 15) = 2.5;
+  EXPECT_EQ(A.get(5, 15), 2.5);
+  EXPECT_EQ(A.blockRow(5)[15], 2.5);
+  EXPECT_EQ(A.get(0, 8), 0.0);
 }
 
 // A zero column of a node is reported as that unknown by the block elimination as well.
@@ -249,7 +263,7 @@ TEST(BandedMatrix, BlockEliminationReportsZeroPivotColumn) {
     for (int r = 37; r < 40; ++r)
       for (int k = 32; k < 40; ++k) A.at(r, k) = u(rng);
     for (int i = 0; i < 40; ++i)
-      if (A.inBand(i, c)) A.at(i, c) = 0.0;
+      if (A.inPattern(i, c)) A.at(i, c) = 0.0;
     EXPECT_EQ(A.factorize(), c + 1) << "zero column " << c;
     EXPECT_FALSE(A.factorized());
   }
