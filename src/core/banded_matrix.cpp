@@ -39,10 +39,23 @@ inline void subtractScaled(double* __restrict r, const double* __restrict p, dou
     *reinterpret_cast<Vec4*>(r + c) = a;
   }
 }
+/// The same from column c0 (a multiple of 4) on.
+template <int LEN>
+inline void subtractScaledFrom(double* __restrict r, const double* __restrict p, double l, int c0) {
+  for (int c = c0; c < LEN; c += 4) {
+    Vec4 a = *reinterpret_cast<Vec4*>(r + c);
+    a -= l * *reinterpret_cast<const Vec4*>(p + c);
+    *reinterpret_cast<Vec4*>(r + c) = a;
+  }
+}
 #else
 template <int LEN>
 inline void subtractScaled(double* __restrict r, const double* __restrict p, double l) {
   for (int c = 0; c < LEN; ++c) r[c] -= l * p[c];
+}
+template <int LEN>
+inline void subtractScaledFrom(double* __restrict r, const double* __restrict p, double l, int c0) {
+  for (int c = c0; c < LEN; ++c) r[c] -= l * p[c];
 }
 #endif
 
@@ -115,7 +128,7 @@ MD_SIMD_CLONES int bandFactor(int n, double* ab, int* ipiv) {
 /// zero pivot.
 template <int NB, int LEAD>
 MD_SIMD_CLONES int blockFactor(int n, const double* rowsA, double* panels, double* lower, int* ipiv,
-                double* inv_diag) {
+                double* inv_diag, int* perm_out) {
   constexpr int M = LEAD + NB, W = 2 * NB, LP = (M + 3) / 4 * 4;
   // Row i of the matrix: W entries from the first column of its first node.
   auto A = [&](int i, int c) { return rowsA[static_cast<std::size_t>(i) * W + static_cast<std::size_t>(c)]; };
@@ -141,36 +154,43 @@ MD_SIMD_CLONES int blockFactor(int n, const double* rowsA, double* panels, doubl
       for (int c = cols; c < W; ++c) P[r][c] = 0.0;
     }
     int* piv = ipiv + NB * j;
+    int perm[M];
+    for (int r = 0; r < M; ++r) perm[r] = r;
     // Multipliers of column k in Lt[k][i] (rows i > k; zero elsewhere, padded to LP rows).
     double(*Lt)[LP] = reinterpret_cast<double(*)[LP]>(lower + static_cast<std::size_t>(j) * NB * LP);
     for (int k = 0; k < NB; ++k) {
+      // First entry of largest magnitude (branch-free: the comparisons select, they do not jump).
       int p = k;
       double best = std::abs(P[k][k]);
-      for (int i = k + 1; i < rows; ++i)
-        if (std::abs(P[i][k]) > best) {
-          best = std::abs(P[i][k]);
-          p = i;
-        }
+      for (int i = k + 1; i < rows; ++i) {
+        const double a = std::abs(P[i][k]);
+        p = a > best ? i : p;
+        best = a > best ? a : best;
+      }
       piv[k] = p;
       if (P[p][k] == 0.0) return NB * j + k + 1;
-      // Whole rows: left of column k both hold exact zeros. The multipliers (in L) stay where
-      // they were computed and the solve applies each interchange before its column, as with
-      // LAPACK's band LU.
-      if (p != k)
+      // Interchange whole rows, and the multipliers of the earlier columns with them (the
+      // dense LU convention: the solve permutes the right-hand side once, then eliminates).
+      if (p != k) {
         for (int c = 0; c < W; ++c) std::swap(P[p][c], P[k][c]);
+        for (int q = 0; q < k; ++q) std::swap(Lt[q][p], Lt[q][k]);
+        std::swap(perm[p], perm[k]);
+      }
       const double rcp = 1.0 / P[k][k];
       inv_diag[NB * j + k] = rcp;
       for (int i = 0; i < LP; ++i) Lt[k][i] = 0.0;
+      // Fixed-length row updates (vectorized, also for l = 0: cheaper than a branch on the data)
+      // from the 4-column group holding column k + 1 on. Columns left of k + 1 are not read
+      // again (the multipliers are in Lt), so what the update leaves there does not matter.
+      const int c0 = (k + 1) / 4 * 4;
       for (int i = k + 1; i < rows; ++i) {
         const double l = P[i][k] * rcp;
         Lt[k][i] = l;
-        if (l == 0.0) continue;
-        // Fixed-length row update (vectorized): the columns left of k are zero in the pivot
-        // row and stay zero; column k is eliminated exactly.
-        subtractScaled<W>(P[i], P[k], l);
-        P[i][k] = 0.0;
+        subtractScaledFrom<W>(P[i], P[k], l, c0);
       }
     }
+    // Panel rows in input order: rows 0..LEAD-1 the carried rows, then the node's own.
+    for (int r = 0; r < M; ++r) perm_out[static_cast<std::size_t>(j) * M + r] = perm[r];
   }
   return 0;
 }
@@ -178,7 +198,8 @@ MD_SIMD_CLONES int blockFactor(int n, const double* rowsA, double* panels, doubl
 /// Solve with the panels of blockFactor: forward through the panels (interchanges, unit lower
 /// factor, leftover rows carried on), then back substitution node by node from the top.
 template <int NB, int LEAD>
-MD_SIMD_CLONES void blockSolve(int n, const double* panels, const double* lower, const int* ipiv, const double* inv_diag, double* b) {
+MD_SIMD_CLONES void blockSolve(int n, const double* panels, const double* lower, const int* perm_in, const double* inv_diag,
+                               double* b) {
   static_assert(NB % 2 == 0, "the dot products below take two columns at a time");
   constexpr int M = LEAD + NB, W = 2 * NB, LP = (M + 3) / 4 * 4;
   const int nodes = n / NB;
@@ -186,16 +207,14 @@ MD_SIMD_CLONES void blockSolve(int n, const double* panels, const double* lower,
   for (int j = 0; j < nodes; ++j) {
     const bool last = j + 1 == nodes;
     const int rows = last ? NB : M;
+    double in[M];
+    for (int r = 0; r < LEAD; ++r) in[r] = j == 0 ? b[r] : carry[r];
+    for (int r = LEAD; r < rows; ++r) in[r] = b[LEAD + NB * j + (r - LEAD)];
+    const int* perm = perm_in + static_cast<std::size_t>(j) * M;
     double v[LP] = {};
-    for (int r = 0; r < LEAD; ++r) v[r] = j == 0 ? b[r] : carry[r];
-    for (int r = LEAD; r < rows; ++r) v[r] = b[LEAD + NB * j + (r - LEAD)];
-    const int* piv = ipiv + NB * j;
+    for (int r = 0; r < rows; ++r) v[r] = in[perm[r]];  // the interchanges of the factorization
     const double(*Lt)[LP] = reinterpret_cast<const double(*)[LP]>(lower + static_cast<std::size_t>(j) * NB * LP);
-    for (int k = 0; k < NB; ++k) {
-      std::swap(v[k], v[piv[k]]);
-      const double vk = v[k];
-      if (vk != 0.0) subtractScaled<LP>(v, Lt[k], vk);  // Lt[k][i] = 0 for i <= k and i >= rows
-    }
+    for (int k = 0; k < NB; ++k) subtractScaled<LP>(v, Lt[k], v[k]);  // Lt[k][i] = 0 for i <= k, i >= rows
     for (int r = 0; r < NB; ++r) b[NB * j + r] = v[r];  // rows of node j's panel are read
     if (!last)
       for (int r = 0; r < LEAD; ++r) carry[r] = v[NB + r];
@@ -218,10 +237,12 @@ MD_SIMD_CLONES void blockSolve(int n, const double* panels, const double* lower,
         t[k] -= s0 + s1;
       }
     }
+    // Column by column: x_k = t_k / U_kk, then x_k leaves the rows above (the dependent chain
+    // is one multiply and one update per unknown).
     for (int k = NB - 1; k >= 0; --k) {
-      double s = t[k];
-      for (int c = k + 1; c < NB; ++c) s -= P[k][c] * x[c];
-      x[k] = s * rd[k];
+      const double xk = t[k] * rd[k];
+      x[k] = xk;
+      for (int i = 0; i < k; ++i) t[i] -= P[i][k] * xk;
     }
   }
 }
@@ -246,6 +267,7 @@ void BandedMatrix::setBlockStructure(int block, int lead) {
   panels_.assign(static_cast<std::size_t>(n_ / 8) * 13 * 16, 0.0);
   lower_.assign(static_cast<std::size_t>(n_ / 8) * 8 * 16, 0.0);
   inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
+  perm_.assign(static_cast<std::size_t>(n_ / 8) * 13, 0);
 }
 
 void BandedMatrix::throwOutsidePattern(int i, int j) const {
@@ -283,7 +305,7 @@ Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
 int BandedMatrix::factorize() {
   int info = 0;
   if (block_ == 8 && lead_ == 5)
-    info = blockFactor<8, 5>(n_, rows_.data(), panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data());
+    info = blockFactor<8, 5>(n_, rows_.data(), panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data(), perm_.data());
   else if (kl_ == 12 && ku_ == 10)
     info = bandFactor<12, 10>(n_, ab_.data(), ipiv_.data());
   else if (kl_ == 8 && ku_ == 8)
@@ -302,7 +324,7 @@ void BandedMatrix::solve(Eigen::VectorXd& b) const {
   if (!factorized_) throw std::logic_error("BandedMatrix::solve before a successful factorize()");
   if (b.size() != n_) throw std::invalid_argument("BandedMatrix::solve: right-hand side of wrong size");
   if (block_ == 8 && lead_ == 5) {
-    blockSolve<8, 5>(n_, panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data(), b.data());
+    blockSolve<8, 5>(n_, panels_.data(), lower_.data(), perm_.data(), inv_diag_.data(), b.data());
     return;
   }
   const int kv = kl_ + ku_;

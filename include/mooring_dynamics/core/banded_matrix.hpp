@@ -98,6 +98,7 @@ class BandedMatrix {
   std::vector<double> panels_;   ///< factored panels of the block elimination
   std::vector<double> lower_;    ///< multipliers of the block elimination
   std::vector<double> inv_diag_; ///< reciprocals of U's diagonal (block elimination)
+  std::vector<int> perm_;        ///< block elimination: input row of each panel row
 
 };
 
