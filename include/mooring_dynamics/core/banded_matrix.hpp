@@ -1,6 +1,9 @@
-// Square banded matrix in LAPACK band storage with LU factorization (dgbtrf) and solves (dgbtrs).
-// The box scheme couples only neighbouring nodes, so the Newton matrix of an n-node line is
-// banded with half-bandwidths of about 1.5 N; the cost of a factorization is linear in n.
+// Square banded matrix in LAPACK band storage with LU factorization (dgbtf2's algorithm; LAPACK's
+// dgbtrf for bandwidths without a compiled kernel) and solves (dgbtrs's). The box scheme couples
+// only neighbouring nodes, so the Newton matrix of an n-node line is banded with half-bandwidths
+// of about 1.5 N; the cost of a factorization is linear in n. Optionally the matrix declares the
+// box scheme's block structure and is then stored by rows and eliminated node by node
+// (setBlockStructure).
 #pragma once
 
 #include <cassert>
@@ -60,12 +63,11 @@ class BandedMatrix {
 
   /// Declare the box scheme's block structure: unknowns in blocks of `block` (one node), the
   /// first `lead` rows on block 0 only, then `block` rows at a time on blocks (j, j + 1) (one
-  /// half-grid interval), the last block - lead rows on the last block. Entries outside this
-  /// pattern must be zero: factorize() then eliminates node by node on dense panels (the
-  /// candidate rows of a node's columns are the lead rows left over from the node before and
-  /// the rows of its interval), with the same partial pivoting as the band LU (every other row
-  /// of the band is zero in those columns), a third of the multiply-adds and no stride-ldab
-  /// access. The entries are then stored by rows (2 * block values from the row's first node)
+  /// half-grid interval), the last block - lead rows on the last block. factorize() then
+  /// eliminates node by node on dense panels (the candidate rows of a node's columns are the
+  /// lead rows left over from the node before and the rows of its interval), with the same
+  /// partial pivoting as the band LU (every other row of the band is zero in those columns),
+  /// less than half of the multiply-adds and no stride-ldab access. The entries are then stored by rows (2 * block values from the row's first node)
   /// instead of the band, and at() throws std::out_of_range outside the pattern. Only
   /// (block, lead) = (8, 5), the dynamic solver's layout, has a kernel; (0, 0) returns to the
   /// band. Changing the structure zeroes the matrix. Throws std::invalid_argument for another
