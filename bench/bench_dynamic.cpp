@@ -1,5 +1,5 @@
 // Dynamic-solver cost (paper sections 4 and 6: generalized-alpha step, Newton with adaptive
-// relaxation, banded LU on the half-grid box scheme).
+// relaxation, node-by-node block LU of the half-grid box scheme).
 //
 // BM_DynamicStepCost/<nodes>: cost of one time step against node count. A grounded chain (the
 // line of bench_static: 250 m of 76 mm chain in 100 m of water, top held at (200, 0), about 100 m

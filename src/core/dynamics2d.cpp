@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "mooring_dynamics/core/adaptive_mesh.hpp"
+#include "mooring_dynamics/core/dynamic_interval.hpp"
 #include "mooring_dynamics/core/equations2d_dynamic.hpp"
 #include "mooring_dynamics/core/mesh.hpp"
 #include "mooring_dynamics/core/newton.hpp"
@@ -35,6 +36,7 @@ struct DynamicSolver2D::Impl {
   Problem problem;
   Mesh mesh;
   WaveField waves;
+  mutable WaveVelocityCache wave_cache;  ///< wave kinematics at the nodes (cos, sin reused)
   GeneralizedAlpha ga;
   DynamicOptions opt;
   std::function<TopInput(double)> top;
@@ -48,11 +50,13 @@ struct DynamicSolver2D::Impl {
 
   double chi[N];
   Totals totals;
+  BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 
-  Water waterAt(double x, double z, double time) const {
+  /// Water at node j, at (x, z) and the time last given to wave_cache.setTime.
+  Water waterAt(int j, double x, double z) const {
     Water w;
     double ux, uy;
     problem.environment.currentAt(z, ux, uy);
@@ -66,9 +70,9 @@ struct DynamicSolver2D::Impl {
       problem.environment.currentAt(z - kDz, um, vy);
       w.dwx_dz = (up - um) / (2.0 * kDz);
     }
-    if (!waves.empty() && z <= 0.0) {
-      double vx, vy, vz;
-      waves.velocity(x, 0.0, z, time, vx, vy, vz);
+    if (!wave_cache.empty() && z <= 0.0) {
+      double vx, vz;
+      wave_cache.velocity(static_cast<std::size_t>(j), x, z, vx, vz);  // WaveField::velocity(x, 0, z, t)
       w.wx += vx;
       w.wz += vz;
     }
@@ -77,7 +81,8 @@ struct DynamicSolver2D::Impl {
 
   void waterField(const Eigen::VectorXd& y, double time, std::vector<Water>& out) const {
     out.resize(static_cast<std::size_t>(nodes()));
-    for (int j = 0; j < nodes(); ++j) out[static_cast<std::size_t>(j)] = waterAt(y[N * j + X], y[N * j + Z], time);
+    wave_cache.setTime(time);
+    for (int j = 0; j < nodes(); ++j) out[static_cast<std::size_t>(j)] = waterAt(j, y[N * j + X], y[N * j + Z]);
   }
 
   /// Spatial rows of every interval at state y (double).
@@ -105,11 +110,23 @@ struct DynamicSolver2D::Impl {
 class DynamicStepSystem : public NewtonSystem {
  public:
   DynamicStepSystem(const DynamicSolver2D::Impl& im, double t_new, double dt, const TopInput& top)
-      : im_(im), t_(t_new), dt_(dt), top_(top) {}
+      : im_(im), t_(t_new), dt_(dt), top_(top) {
+    // cos and sin of every node's inclination at the previous level: fixed during the step.
+    const int n = im_.nodes();
+    cp_.resize(static_cast<std::size_t>(n));
+    spr_.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      cp_[static_cast<std::size_t>(j)] = std::cos(im_.Y[N * j + PHI]);
+      spr_[static_cast<std::size_t>(j)] = std::sin(im_.Y[N * j + PHI]);
+    }
+  }
 
   int size() const override { return N * im_.nodes(); }
   int lowerBandwidth() const override { return 12; }
   int upperBandwidth() const override { return 10; }
+  // Node-by-node elimination of the same matrix (every row couples node j and j + 1 only).
+  int blockSize() const override { return N; }
+  int leadingRows() const override { return kAnchorRows; }
   double scale(int i) const override { return im_.chi[i % N]; }
   std::string describe(int i) const override {
     const std::size_t j = static_cast<std::size_t>(i / N);
@@ -162,41 +179,59 @@ class DynamicStepSystem : public NewtonSystem {
       J->at(4, Z) = 1.0;
     }
 
+    // Weighted rates (eq. 30) and cos, sin of the inclination at every node, once per evaluation.
+    ydw_.resize(Y.size());
+    for (Eigen::Index i = 0; i < Y.size(); ++i)
+      ydw_[i] = (1.0 - am) * (c1 * (Y[i] - Yp[i]) - c0 * Ydp[i]) + am * Ydp[i];
+    c_.resize(static_cast<std::size_t>(n));
+    s_.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      c_[static_cast<std::size_t>(j)] = std::cos(Y[N * j + PHI]);
+      s_[static_cast<std::size_t>(j)] = std::sin(Y[N * j + PHI]);
+    }
+    const StepWeights wts{ak, (1.0 - am) * c1};
+    double Jl[N][2 * N];
+
     for (int j = 0; j + 1 < n; ++j) {
       const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
       const int row = kAnchorRows + N * j;
-      AD16 y[2 * N], yd[2 * N], ydw[2 * N], yp[2 * N];
+      const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+      if (iv.h > 0.0) {
+        // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp).
+        const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
+        const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
+        const NodeView pa{Yp.data() + N * j, cp_[a], spr_[a], &im_.water[a]};
+        const NodeView pb{Yp.data() + N * (j + 1), cp_[b], spr_[b], &im_.water[b]};
+        // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
+        double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
+        intervalStepRows(im_.problem.environment, im_.problem.materials[iv.material], iv.h, na, nb, pa, pb,
+                         ydw_.data() + N * j, ydw_.data() + N * (j + 1), wts, im_.S.data() + N * j, R.data() + row,
+                         J ? Jrows : nullptr);
+        if (J && Jrows == Jl)
+          for (int q = 0; q < N; ++q)
+            for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
+        continue;
+      }
+      // Junction (pin) rows: few, left to automatic differentiation.
+      AD16 y[2 * N], ydw[2 * N], yp[2 * N];
       for (int k = 0; k < 2 * N; ++k) {
         const int idx = N * j + k;
         y[k] = AD16(Y[idx], 2 * N, k);
-        yd[k] = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
-        ydw[k] = (1.0 - am) * yd[k] + am * Ydp[idx];  // weighted rate of eq. 30
+        const AD16 yd = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
+        ydw[k] = (1.0 - am) * yd + am * Ydp[idx];  // weighted rate of eq. 30
         yp[k] = AD16(Yp[idx]);
         yp[k].derivatives().setZero(2 * N);
       }
-      const Water& wa = water_[static_cast<std::size_t>(j)];
-      const Water& wb = water_[static_cast<std::size_t>(j) + 1];
-      const Water& wpa = im_.water[static_cast<std::size_t>(j)];
-      const Water& wpb = im_.water[static_cast<std::size_t>(j) + 1];
+      const Water& wa = water_[a];
       AD16 sp[N], in1[N], in0[N], r[N];
-      int weighted;
-      if (iv.h > 0.0) {
-        const Material& m = im_.problem.materials[iv.material];
-        intervalSpatial(im_.problem.environment, m, iv.h, y, y + N, wa, wb, sp);
-        // Mass matrix at both levels (averaged below, eq. 31) applied to the weighted rate.
-        intervalInertia(im_.problem.environment, m, iv.h, y, y + N, ydw, ydw + N, wa, wb, in1);
-        intervalInertia(im_.problem.environment, m, iv.h, yp, yp + N, ydw, ydw + N, wpa, wpb, in0);
-        weighted = kWeightedRows;
-      } else {
-        junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, sp);
-        junctionInertia(im_.problem, iv, y, ydw, in1);
-        junctionInertia(im_.problem, iv, yp, ydw, in0);
-        junctionConstraints(y, y + N, sp);
-        for (int q = 2; q < N; ++q) in1[q] = in0[q] = AD16(0.0);
-        weighted = 2;
-      }
+      junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, sp);
+      junctionInertia(im_.problem, iv, y, ydw, in1);
+      junctionInertia(im_.problem, iv, yp, ydw, in0);
+      junctionConstraints(y, y + N, sp);
+      for (int q = 2; q < N; ++q) in1[q] = in0[q] = AD16(0.0);
+      constexpr int kJunctionWeighted = 2;  // the force balance; the constraints hold at the new level
       for (int q = 0; q < N; ++q) {
-        if (q < weighted)
+        if (q < kJunctionWeighted)
           // Eq. 30 with the mass matrix averaged between the levels (eq. 31) by alpha_k, not the
           // printed alpha_m: the weighted rate approximates dY/dt at the alpha_k level, and with
           // alpha_m weights a state-dependent M costs second order (measured slope 1.6 for
@@ -260,6 +295,9 @@ class DynamicStepSystem : public NewtonSystem {
   double t_, dt_;
   TopInput top_;
   mutable std::vector<Water> water_;
+  std::vector<double> cp_, spr_;  ///< cos, sin of phi at the previous level
+  std::vector<double> c_, s_;     ///< cos, sin of phi at the current iterate
+  Eigen::VectorXd ydw_;           ///< weighted rates (eq. 30) at the current iterate
 };
 
 // ------------------------------------------------------------------------------------------------
@@ -308,6 +346,7 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
                              im.statics.summary.message);
   if (problem.environment.waves.type != WaveSpec::Type::None)
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
 
   // Top motion: the 3-D source projected on the x-z plane, started at the static top (y = 0).
   const NodeState& topNode = im.statics.nodes.back();
@@ -398,7 +437,7 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   no.max_iterations = im.opt.max_iterations;
   no.mu0 = im.opt.relaxation;
   no.adaptive = im.opt.adaptive_relaxation;
-  const SolverSummary s = solveNewton(sys, Y, no);
+  const SolverSummary s = solveNewton(sys, Y, no, &im.newton_matrix);
   rep.newton_iterations += s.iterations;
   im.totals.newton_iterations += s.iterations;
   if (!s.converged) {

@@ -27,10 +27,15 @@ double scaledUpdate(const NewtonSystem& system, const Eigen::VectorXd& dY, int* 
 
 }  // namespace
 
-SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options) {
+SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options,
+                          BandedMatrix* workspace) {
   SolverSummary summary;
   const int n = system.size();
-  BandedMatrix J(n, system.lowerBandwidth(), system.upperBandwidth());
+  BandedMatrix local;
+  BandedMatrix& J = workspace ? *workspace : local;
+  if (J.size() != n || J.lower() != system.lowerBandwidth() || J.upper() != system.upperBandwidth())
+    J = BandedMatrix(n, system.lowerBandwidth(), system.upperBandwidth());
+  J.setBlockStructure(system.blockSize(), system.leadingRows());
   Eigen::VectorXd R(n), dY(n);
   double mu = options.mu0;
   double sigma_prev = 0.0;

@@ -221,6 +221,7 @@ WaveField::WaveField(const WaveSpec& spec, double depth, double gravity) : depth
       c.direction = spec.direction;
       c.phase = 0.0;  // crest at the origin at t = 0
       components_.push_back(c);
+      precompute();
       return;
     }
     case WaveSpec::Type::Jonswap:
@@ -254,6 +255,34 @@ WaveField::WaveField(const WaveSpec& spec, double depth, double gravity) : depth
     const double scale = std::sqrt(spec.hs * spec.hs / 16.0 / variance);
     for (auto& c : components_) c.amplitude *= scale;
   }
+  precompute();
+}
+
+void WaveField::precompute() {
+  kin_.clear();
+  kin_.reserve(components_.size());
+  z_all_negligible_ = -std::numeric_limits<double>::infinity();
+  bool all_deep = !components_.empty();
+  double lowest_relevant = std::numeric_limits<double>::infinity();
+  for (const auto& c : components_) {
+    Kinematics q;
+    q.aw = c.amplitude * c.omega;
+    q.cd = std::cos(c.direction);
+    q.sd = std::sin(c.direction);
+    q.deep = c.k * depth_ > kDeepKh;
+    if (q.deep) {
+      q.den = -std::expm1(-2.0 * c.k * depth_);
+      q.e2kh = std::exp(-2.0 * c.k * depth_);
+      // aw e^{k z} < kNegligibleVelocity  <=>  z < ln(kNegligibleVelocity / aw) / k (k > 0 here).
+      q.z_skip = q.aw > 0.0 ? std::log(kNegligibleVelocity / q.aw) / c.k : std::numeric_limits<double>::infinity();
+      lowest_relevant = std::min(lowest_relevant, q.z_skip);
+    } else {
+      q.den = std::sinh(c.k * depth_);
+      all_deep = false;
+    }
+    kin_.push_back(q);
+  }
+  if (all_deep) z_all_negligible_ = lowest_relevant;
 }
 
 double WaveField::rampFactor(double t) const {
@@ -298,18 +327,38 @@ void WaveField::velocity(double x, double y, double z, double t, double& vx, dou
   vx = vy = vz = 0.0;
   if (components_.empty()) return;
   const double zc = std::min(0.0, std::max(-depth_, z));
-  for (const auto& c : components_) {
-    const double aw = c.amplitude * c.omega;
-    // In deep water the factors are about e^{kz}: skip a component whose velocity at this depth
-    // is below kNegligibleVelocity (most of a deep line sees none of the short waves).
-    if (c.k * depth_ > kDeepKh && aw * std::exp(c.k * zc) < kNegligibleVelocity) continue;
+  // Every component deep and negligible at this depth (the skip test below for each of them).
+  if (zc < z_all_negligible_) return;
+  for (std::size_t i = 0; i < components_.size(); ++i) {
+    const WaveComponent& c = components_[i];
+    const Kinematics& q = kin_[i];
     double ch, sh;
-    depthFactors(c.k, zc, depth_, ch, sh);
-    const double th = phaseOf(c, x, y, t);
-    const double uh = aw * ch * std::cos(th);
-    vx += uh * std::cos(c.direction);
-    vy += uh * std::sin(c.direction);
-    vz += aw * sh * std::sin(th);
+    if (q.deep) {
+      // In deep water the factors are about e^{kz}: skip a component whose velocity at this
+      // depth is below kNegligibleVelocity (most of a deep line sees none of the short waves).
+      if (zc < q.z_skip) continue;
+      // depthFactors' exponential form: (e^{kz} +- e^{-k(z+2h)}) / (1 - e^{-2kh}).
+      const double e1 = std::exp(c.k * zc);
+      if (q.aw * e1 < kNegligibleVelocity) continue;
+      const double e2 = q.e2kh / e1;
+      ch = (e1 + e2) / q.den;
+      sh = (e1 - e2) / q.den;
+    } else if (q.den > 0.0) {
+      // depthFactors with sinh(k h) from the constructor and cosh, sinh of k (z + h) from one
+      // exponential (k (z + h) is in [0, 20] here; the rounding of the difference is absolute,
+      // ~1e-16 of the component's velocity).
+      const double e = std::exp(c.k * (zc + depth_));
+      const double ei = 1.0 / e;
+      ch = 0.5 * (e + ei) / q.den;
+      sh = 0.5 * (e - ei) / q.den;
+    } else {
+      depthFactors(c.k, zc, depth_, ch, sh);
+    }
+    const double th = c.k * (x * q.cd + y * q.sd) - c.omega * t + c.phase;
+    const double uh = q.aw * ch * std::cos(th);
+    vx += uh * q.cd;
+    vy += uh * q.sd;
+    vz += q.aw * sh * std::sin(th);
   }
   const double r = rampFactor(t);
   vx *= r;
@@ -345,6 +394,109 @@ void WaveField::acceleration(double x, double y, double z, double t, double& ax,
   ax = r * ax + dr * vx;
   ay = r * ay + dr * vy;
   az = r * az + dr * vz;
+}
+
+// ---------------------------------------------------------------------------------------------
+// WaveVelocityCache
+
+WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points) : field_(field) {
+  if (empty()) return;
+  const WaveField& f = *field_;
+  nc_ = f.components_.size();
+  // e^{-k(z+2h)} / e^{kz} = e^{-2k(z+h)} < 1e-17 (below half an ulp of e^{kz}) when k (z + h) > 19.6.
+  constexpr double kHalfUlpExponent = 19.6;
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const WaveComponent& c = f.components_[i];
+    const WaveField::Kinematics& q = f.kin_[i];
+    Comp m;
+    m.k = c.k;
+    m.omega = c.omega;
+    m.phase = c.phase;
+    m.aw = q.aw;
+    m.cd = q.cd;
+    m.kx = c.k * q.cd;
+    m.deep = q.deep;
+    m.inv_den = 1.0 / q.den;
+    m.e2kh = q.e2kh;
+    m.z_e2 = q.deep ? -f.depth_ + kHalfUlpExponent / c.k : 0.0;
+    m.z_skip = q.deep ? q.z_skip : -std::numeric_limits<double>::infinity();
+    m.hyperbolic = q.den > 0.0;
+    kx_max_ = std::max(kx_max_, std::abs(m.kx));
+    comps_.push_back(m);
+  }
+  std::stable_sort(comps_.begin(), comps_.end(), [](const Comp& a, const Comp& b) { return a.z_skip < b.z_skip; });
+  cos_a_.assign(nc_, 1.0);
+  sin_a_.assign(nc_, 0.0);
+  x_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
+  cos_b_.assign(points * nc_, 1.0);
+  sin_b_.assign(points * nc_, 0.0);
+}
+
+void WaveVelocityCache::setTime(double t) {
+  if (empty() || (have_time_ && t == t_)) return;
+  t_ = t;
+  have_time_ = true;
+  ramp_ = field_->rampFactor(t);
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const double a = comps_[i].phase - comps_[i].omega * t;
+    cos_a_[i] = std::cos(a);
+    sin_a_[i] = std::sin(a);
+  }
+}
+
+void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, double& vz) {
+  vx = vz = 0.0;
+  if (empty()) return;
+  const WaveField& f = *field_;
+  const double zc = std::min(0.0, std::max(-f.depth_, z));
+  if (zc < f.z_all_negligible_) return;
+  double* cb = cos_b_.data() + p * nc_;
+  double* sb = sin_b_.data() + p * nc_;
+  if (!(std::abs(x - x_ref_[p]) * kx_max_ <= kTaylorRadius)) {  // also when x_ref is NaN
+    x_ref_[p] = x;
+    for (std::size_t i = 0; i < nc_; ++i) {
+      cb[i] = std::cos(comps_[i].kx * x);
+      sb[i] = std::sin(comps_[i].kx * x);
+    }
+  }
+  const double dx = x - x_ref_[p];
+  double sx = 0.0, sz = 0.0;  // local sums (the outputs could alias the tables)
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const Comp& c = comps_[i];
+    double ch, sh;
+    if (c.deep) {
+      // As WaveField::velocity: negligible components of deep water are left out (all the
+      // following ones are too: sorted by z_skip).
+      if (zc < c.z_skip) break;
+      const double e1 = std::exp(c.k * zc);
+      if (c.aw * e1 < kNegligibleVelocity) continue;
+      const double e2 = zc > c.z_e2 ? 0.0 : c.e2kh / e1;
+      ch = (e1 + e2) * c.inv_den;
+      sh = (e1 - e2) * c.inv_den;
+    } else if (c.hyperbolic) {
+      const double e = std::exp(c.k * (zc + f.depth_));
+      const double ei = 1.0 / e;
+      ch = 0.5 * (e + ei) * c.inv_den;
+      sh = 0.5 * (e - ei) * c.inv_den;
+    } else {
+      depthFactors(c.k, zc, f.depth_, ch, sh);
+    }
+    // cos, sin of d = kx (x - x_ref), |d| <= kTaylorRadius, by their Taylor series (Horner).
+    const double d = c.kx * dx, d2 = d * d;
+    const double cd =
+        1.0 + d2 * (-1.0 / 2 + d2 * (1.0 / 24 + d2 * (-1.0 / 720 + d2 * (1.0 / 40320 + d2 * (-1.0 / 3628800 +
+        d2 * (1.0 / 479001600 + d2 * (-1.0 / 87178291200.0)))))));
+    const double sd =
+        d * (1.0 + d2 * (-1.0 / 6 + d2 * (1.0 / 120 + d2 * (-1.0 / 5040 + d2 * (1.0 / 362880 + d2 * (-1.0 / 39916800 +
+        d2 * (1.0 / 6227020800.0)))))));
+    const double cbx = cb[i] * cd - sb[i] * sd, sbx = sb[i] * cd + cb[i] * sd;  // B at x
+    const double cth = cbx * cos_a_[i] - sbx * sin_a_[i];                      // B + A
+    const double sth = sbx * cos_a_[i] + cbx * sin_a_[i];
+    sx += c.aw * ch * cth * c.cd;
+    sz += c.aw * sh * sth;
+  }
+  vx = sx * ramp_;
+  vz = sz * ramp_;
 }
 
 }  // namespace core

@@ -38,10 +38,13 @@ Eigen::VectorXd randomVector(int n, std::mt19937& rng) {
   return v;
 }
 
-// (n, kl, ku): square, tridiagonal, unequal bands both ways, diagonal only, band wider than n.
+// (n, kl, ku): square, tridiagonal, unequal bands both ways, diagonal only, band wider than n;
+// the last rows are the bandwidths with a compiled kernel, (12, 10) dynamics and (8, 8) statics,
+// from smaller than the band to many times it.
 const std::vector<std::tuple<int, int, int>> kShapes = {
     {1, 0, 0}, {5, 1, 1}, {7, 2, 0}, {7, 0, 3}, {12, 3, 1}, {12, 1, 4},
-    {30, 4, 7}, {30, 7, 2}, {60, 5, 5}, {60, 9, 3}, {6, 8, 8}, {40, 0, 0}};
+    {30, 4, 7}, {30, 7, 2}, {60, 5, 5}, {60, 9, 3}, {6, 8, 8}, {40, 0, 0},
+    {1, 12, 10}, {9, 12, 10}, {23, 12, 10}, {60, 12, 10}, {3, 8, 8}, {17, 8, 8}, {60, 8, 8}};
 
 }  // namespace
 
@@ -142,17 +145,18 @@ TEST(BandedMatrix, SingularMatrixReportsZeroPivotColumn) {
   // A zero column c stays zero through elimination, so U(c, c) == 0 exactly and dgbtrf reports
   // k = c + 1 (unless an earlier column is already singular, which it is not here).
   std::mt19937 rng(99);
-  for (int c : {0, 3, 7}) {
-    BandedMatrix A(8, 2, 3);
-    fillRandom(A, rng);
-    for (int i = 0; i < 8; ++i)
-      if (A.inBand(i, c)) A.at(i, c) = 0.0;
-    const int k = A.factorize();
-    EXPECT_EQ(k, c + 1) << "zero column " << c;
-    EXPECT_FALSE(A.factorized());
-    Eigen::VectorXd b = Eigen::VectorXd::Ones(8);
-    EXPECT_THROW(A.solve(b), std::logic_error);
-  }
+  for (const auto& [n, kl, ku] : {std::tuple<int, int, int>{8, 2, 3}, {40, 12, 10}, {30, 8, 8}})
+    for (int c : {0, 3, 7, n - 1}) {
+      BandedMatrix A(n, kl, ku);
+      fillRandom(A, rng);
+      for (int i = 0; i < n; ++i)
+        if (A.inBand(i, c)) A.at(i, c) = 0.0;
+      const int k = A.factorize();
+      EXPECT_EQ(k, c + 1) << "zero column " << c << " n=" << n << " kl=" << kl << " ku=" << ku;
+      EXPECT_FALSE(A.factorized());
+      Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+      EXPECT_THROW(A.solve(b), std::logic_error);
+    }
   // Two equal rows of small integers: elimination of the second by the first is exact.
   BandedMatrix B(3, 1, 1);
   B.at(0, 0) = 1.0; B.at(0, 1) = 2.0;
@@ -173,4 +177,101 @@ TEST(BandedMatrix, SolveBeforeFactorizeThrows) {
   A.setZero();
   EXPECT_FALSE(A.factorized());
   EXPECT_THROW(A.solve(b), std::logic_error);
+}
+
+// The sparsity of the dynamic Newton matrix inside its band (kl = 12, ku = 10): 5 anchor rows on
+// node 0, 8 rows per interval on nodes j and j + 1, 3 top rows on the last node, with a quarter
+// of the block entries zero at random and a few all-zero leading columns in the blocks, so that
+// rows start and end at different columns and the pivots move rows with different extents.
+// Band LU and the node-by-node block elimination (setBlockStructure(8, 5)) must both match
+// dense LU on it.
+TEST(BandedMatrix, BoxSchemeSparsityMatchesDensePartialPivLU) {
+  constexpr int kN = 8, kAnchor = 5;
+  // A random pattern with a quarter of its entries zero can be (nearly) singular: such draws
+  // are skipped, the rest have determinants of order one or more.
+  constexpr double kSingularDeterminant = 1e-8;
+  // Sparse random matrices are less well conditioned than the full bands above (cond up to
+  // ~1e8 here), so the two solvers agree to cond * 1e-16; the residual check stays at
+  // kSolveRelTol.
+  constexpr double kSparseAgreementTol = 1e-6;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::bernoulli_distribution zero(0.25);
+  int solved = 0;
+  for (bool blocks : {false, true})
+  for (int nodes : {1, 2, 3, 10, 40}) {
+    for (int trial = 0; trial < 5; ++trial) {
+      const int n = kN * nodes;
+      BandedMatrix A(n, 12, 10);
+      if (blocks) A.setBlockStructure(kN, kAnchor);
+      Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
+      auto set = [&](int r, int c) {
+        if (zero(rng)) return;
+        D(r, c) = A.at(r, c) = u(rng);
+      };
+      for (int r = 0; r < kAnchor; ++r)
+        for (int c = 0; c < kN; ++c) set(r, c);
+      for (int j = 0; j + 1 < nodes; ++j)
+        for (int q = 0; q < kN; ++q)
+          for (int c = kN * j + (q % 3); c < kN * (j + 2); ++c) set(kAnchor + kN * j + q, c);
+      for (int r = n - 3; r < n; ++r)
+        for (int c = n - kN; c < n; ++c) set(r, c);
+      if (std::abs(D.determinant()) < kSingularDeterminant) continue;
+      const Eigen::VectorXd b = randomVector(n, rng);
+      const Eigen::VectorXd x_dense = D.partialPivLu().solve(b);
+      ASSERT_EQ(A.factorize(), 0) << "nodes " << nodes << " trial " << trial;
+      Eigen::VectorXd x = b;
+      A.solve(x);
+      EXPECT_LE((D * x - b).norm(), kSolveRelTol * (D.norm() * x.norm() + b.norm()))
+          << "nodes " << nodes << " trial " << trial;
+      EXPECT_LE((x - x_dense).norm(), kSparseAgreementTol * x_dense.norm()) << "nodes " << nodes << " trial " << trial;
+      ++solved;
+    }
+  }
+  EXPECT_GT(solved, 40);  // most random patterns are regular
+}
+
+TEST(BandedMatrix, BlockStructureMustFitTheBand) {
+  BandedMatrix A(80, 12, 10);
+  EXPECT_NO_THROW(A.setBlockStructure(8, 5));
+  EXPECT_NO_THROW(A.setBlockStructure(0, 0));  // back to the band LU
+  BandedMatrix narrow(80, 11, 10);
+  EXPECT_THROW(narrow.setBlockStructure(8, 5), std::invalid_argument);
+  BandedMatrix odd(81, 12, 10);
+  EXPECT_THROW(odd.setBlockStructure(8, 5), std::invalid_argument);
+  EXPECT_THROW(A.setBlockStructure(6, 3), std::invalid_argument);  // no kernel for it
+  // In the structure: rows by node, and nothing outside the pattern.
+  A.setBlockStructure(8, 5);
+  EXPECT_TRUE(A.inPattern(0, 7));
+  EXPECT_FALSE(A.inPattern(0, 8));     // anchor rows: node 0 only
+  EXPECT_TRUE(A.inPattern(5, 15));     // interval 0: nodes 0 and 1
+  EXPECT_FALSE(A.inPattern(13, 7));    // interval 1 starts at node 1
+  EXPECT_FALSE(A.inPattern(79, 71));   // top rows: the last node only
+  EXPECT_TRUE(A.inPattern(79, 72));
+  EXPECT_THROW(A.at(0, 8), std::out_of_range);
+  A.at(5, 15) = 2.5;
+  EXPECT_EQ(A.get(5, 15), 2.5);
+  EXPECT_EQ(A.blockRow(5)[15], 2.5);
+  EXPECT_EQ(A.get(0, 8), 0.0);
+}
+
+// A zero column of a node is reported as that unknown by the block elimination as well.
+TEST(BandedMatrix, BlockEliminationReportsZeroPivotColumn) {
+  std::mt19937 rng(5);
+  for (int c : {0, 13, 39}) {
+    BandedMatrix A(40, 12, 10);
+    A.setBlockStructure(8, 5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int r = 0; r < 5; ++r)
+      for (int k = 0; k < 8; ++k) A.at(r, k) = u(rng);
+    for (int j = 0; j + 1 < 5; ++j)
+      for (int q = 0; q < 8; ++q)
+        for (int k = 8 * j; k < 8 * (j + 2); ++k) A.at(5 + 8 * j + q, k) = u(rng);
+    for (int r = 37; r < 40; ++r)
+      for (int k = 32; k < 40; ++k) A.at(r, k) = u(rng);
+    for (int i = 0; i < 40; ++i)
+      if (A.inPattern(i, c)) A.at(i, c) = 0.0;
+    EXPECT_EQ(A.factorize(), c + 1) << "zero column " << c;
+    EXPECT_FALSE(A.factorized());
+  }
 }

@@ -619,9 +619,10 @@ TEST(Dynamics2D, StraightShipTrackAlongXTowsTheTop) {
 
 // --- Jacobian of a time step --------------------------------------------------------------------
 
-// The assembled (AutoDiff) Jacobian of a generalized-alpha step against central finite
-// differences, mid-run on a heaved line in current without seabed contact (the contact onset is
-// a kink that central differences straddle). Smooth terms agree to round-off; 1e-5 leaves room
+// The assembled Jacobian of a generalized-alpha step (hand-coded interval rows of
+// dynamic_interval.hpp, AutoDiff junction and end rows) against central finite differences,
+// mid-run on a heaved line in current without seabed contact (the contact onset is a kink that
+// central differences straddle; test_dynamic_interval checks the contact terms against AutoDiff). Smooth terms agree to round-off; 1e-5 leaves room
 // for the step-size truncation of the finite differences.
 TEST(Dynamics2D, StepJacobianMatchesFiniteDifferences) {
   constexpr double kFdRelativeTolerance = 1e-5;

@@ -422,3 +422,45 @@ TEST(Waves, ValidateMessagesNameKeyAndValue) {
   }
   EXPECT_THROW(WaveField(regular(1.0, 8.0), -5.0, kG), std::invalid_argument);
 }
+
+// The per-point cache of the dynamic solver against WaveField::velocity: a random sea in deep
+// water (1860 m, every component in the exponential branch), one in 60 m (hyperbolic branch),
+// with a ramp, at points that creep (Taylor carry) and jump (refresh) between evaluations,
+// above and below the surface, over many times. Same sums up to rounding.
+TEST(Waves, VelocityCacheMatchesDirectEvaluation) {
+  constexpr double kRelTol = 1e-12;   // of the largest velocity: reordered rounding only
+  for (double depth : {1860.0, 60.0}) {
+    WaveSpec spec;
+    spec.type = WaveSpec::Type::PiersonMoskowitz;
+    spec.hs = 9.8;
+    spec.tp = 16.0;
+    spec.direction = 0.3;
+    spec.ramp = 20.0;
+    const WaveField field(spec, depth, 9.81);
+    constexpr std::size_t kPoints = 4;
+    WaveVelocityCache cache(&field, kPoints);
+    ASSERT_FALSE(cache.empty());
+    const double x0[kPoints] = {0.0, 150.0, -40.0, 900.0};
+    const double z0[kPoints] = {-1.0, -15.0, 0.5, -0.5 * depth};
+    int compared = 0;
+    for (int step = 0; step < 60; ++step) {
+      const double t = 0.37 * step;
+      cache.setTime(t);
+      for (std::size_t p = 0; p < kPoints; ++p) {
+        // Creep by a few mm per evaluation, jump by metres every 10th step.
+        const double x = x0[p] + 0.003 * step + (step % 10 == 9 ? 7.0 : 0.0);
+        const double z = z0[p] + 0.2 * std::sin(0.1 * step);
+        double vx, vz, ex, ey, ez;
+        cache.velocity(p, x, z, vx, vz);
+        field.velocity(x, 0.0, z, t, ex, ey, ez);
+        const double scale = std::max({1e-3, std::abs(ex), std::abs(ez)});
+        EXPECT_NEAR(vx, ex, kRelTol * scale) << "depth " << depth << " point " << p << " t " << t;
+        EXPECT_NEAR(vz, ez, kRelTol * scale) << "depth " << depth << " point " << p << " t " << t;
+        ++compared;
+      }
+    }
+    EXPECT_EQ(compared, 240);
+  }
+  WaveVelocityCache none(nullptr, 3);
+  EXPECT_TRUE(none.empty());
+}

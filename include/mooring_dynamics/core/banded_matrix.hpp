@@ -1,8 +1,13 @@
-// Square banded matrix in LAPACK band storage with LU factorization (dgbtrf) and solves (dgbtrs).
-// The box scheme couples only neighbouring nodes, so the Newton matrix of an n-node line is
-// banded with half-bandwidths of about 1.5 N; the cost of a factorization is linear in n.
+// Square banded matrix in LAPACK band storage with LU factorization (dgbtf2's algorithm; LAPACK's
+// dgbtrf for bandwidths without a compiled kernel) and solves (dgbtrs's). The box scheme couples
+// only neighbouring nodes, so the Newton matrix of an n-node line is banded with half-bandwidths
+// of about 1.5 N; the cost of a factorization is linear in n. Optionally the matrix declares the
+// box scheme's block structure and is then stored by rows and eliminated node by node
+// (setBlockStructure).
 #pragma once
 
+#include <cassert>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,15 +28,61 @@ class BandedMatrix {
 
   void setZero();
   /// Element access; (i, j) must lie inside the band (checked in debug builds).
-  double& at(int i, int j);
-  double get(int i, int j) const;
+  /// LAPACK band storage: A(i, j) lives at AB(kl + ku + i - j, j) (0-based), column-major.
+  /// With a block structure (setBlockStructure) the entries live in rows of 2 * block values
+  /// starting at the row's first node, and (i, j) must lie in the pattern.
+  double& at(int i, int j) {
+    assert(i >= 0 && i < n_ && j >= 0 && j < n_ && inBand(i, j));
+    if (block_ > 0) {
+      if (!inPattern(i, j)) throwOutsidePattern(i, j);
+      return rows_[static_cast<std::size_t>(i) * (2 * block_) + static_cast<std::size_t>(j - block_ * rowNode(i))];
+    }
+    return ab_[static_cast<std::size_t>(kl_ + ku_ + i - j) + static_cast<std::size_t>(j) * ldab_];
+  }
+  double get(int i, int j) const {
+    if (!inBand(i, j)) return 0.0;
+    if (block_ > 0)
+      return inPattern(i, j)
+                 ? rows_[static_cast<std::size_t>(i) * (2 * block_) + static_cast<std::size_t>(j - block_ * rowNode(i))]
+                 : 0.0;
+    return ab_[static_cast<std::size_t>(kl_ + ku_ + i - j) + static_cast<std::size_t>(j) * ldab_];
+  }
+  /// Block structure: row i's 2 * block entries, from the first column of its first node
+  /// (block rows on a single node use the first half). Null without a block structure.
+  double* blockRow(int i) {
+    return block_ > 0 ? rows_.data() + static_cast<std::size_t>(i) * (2 * block_) : nullptr;
+  }
   bool inBand(int i, int j) const { return j - i <= ku_ && i - j <= kl_; }
+  /// Block structure: whether (i, j) is one of the pattern's entries (always true without one).
+  bool inPattern(int i, int j) const {
+    if (block_ == 0) return inBand(i, j);
+    const int first = block_ * rowNode(i);
+    const bool pair = i >= lead_ && rowNode(i) + 1 < n_ / block_;  // an interval row: two nodes
+    return j >= first && j < first + (pair ? 2 : 1) * block_;
+  }
+
+  /// Declare the box scheme's block structure: unknowns in blocks of `block` (one node), the
+  /// first `lead` rows on block 0 only, then `block` rows at a time on blocks (j, j + 1) (one
+  /// half-grid interval), the last block - lead rows on the last block. factorize() then
+  /// eliminates node by node on dense panels (the candidate rows of a node's columns are the
+  /// lead rows left over from the node before and the rows of its interval), with the same
+  /// partial pivoting as the band LU (every other row of the band is zero in those columns),
+  /// less than half of the multiply-adds and no stride-ldab access. The entries are then stored by rows (2 * block values from the row's first node)
+  /// instead of the band, and at() throws std::out_of_range outside the pattern. Only
+  /// (block, lead) = (8, 5), the dynamic solver's layout, has a kernel; (0, 0) returns to the
+  /// band. Changing the structure zeroes the matrix. Throws std::invalid_argument for another
+  /// structure or one the band cannot hold.
+  void setBlockStructure(int block, int lead);
 
   /// y = A x using the unfactored matrix.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
 
-  /// LU-factorize in place (partial pivoting). Returns 0 on success, or k > 0 when U(k-1, k-1)
-  /// is exactly zero (the matrix is singular; the 0-based column is k-1).
+  /// LU-factorize in place (partial pivoting, LAPACK's dgbtf2 algorithm and storage). Returns 0
+  /// on success, or k > 0 when U(k-1, k-1) is exactly zero (the matrix is singular; the 0-based
+  /// column is k-1). The bandwidths of the solvers, (12, 10) for dynamics and (8, 8) for
+  /// statics, are compiled with fixed loop lengths: at these widths LAPACK's unblocked dgbtf2
+  /// spends most of its time in the per-column BLAS calls (idamax, dswap, dscal, dger); other
+  /// bandwidths call dgbtrf.
   int factorize();
   bool factorized() const { return factorized_; }
   /// Solve A x = b in place with the factorization.
@@ -42,6 +93,15 @@ class BandedMatrix {
   std::vector<double> ab_;
   std::vector<int> ipiv_;
   bool factorized_ = false;
+  int block_ = 0, lead_ = 0;     ///< block structure (setBlockStructure), 0: plain band
+  int rowNode(int i) const { return i < lead_ ? 0 : (i - lead_) / block_; }
+  [[noreturn]] void throwOutsidePattern(int i, int j) const;
+  std::vector<double> rows_;     ///< block structure: the matrix, 2 * block entries per row
+  std::vector<double> panels_;   ///< factored panels of the block elimination
+  std::vector<double> lower_;    ///< multipliers of the block elimination
+  std::vector<double> inv_diag_; ///< reciprocals of U's diagonal (block elimination)
+  std::vector<int> perm_;        ///< block elimination: input row of each panel row
+
 };
 
 }  // namespace core

@@ -19,6 +19,10 @@ class NewtonSystem {
   virtual int size() const = 0;
   virtual int lowerBandwidth() const = 0;
   virtual int upperBandwidth() const = 0;
+  /// Optional block structure of the Jacobian (BandedMatrix::setBlockStructure): unknowns per
+  /// node and rows on the first node only. Default (0, 0): a plain band.
+  virtual int blockSize() const { return 0; }
+  virtual int leadingRows() const { return 0; }
   /// Residual R(Y); when J is non-null also the Jacobian dR/dY (J is zeroed by the caller).
   virtual void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) = 0;
   /// chi_m of eq. 39 for unknown i: the magnitude of a physically negligible change.
@@ -61,7 +65,10 @@ JacobianCheck checkJacobian(NewtonSystem& system, const Eigen::VectorXd& Y);
 
 /// Iterate Y^{k+1} = Y^k + mu dY^k (eq. 38) from the initial guess in Y until sigma^k (eq. 39)
 /// falls below the tolerance. Y holds the last iterate on return, converged or not.
-SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options);
+/// `workspace`, when given, is the Newton matrix reused from call to call (resized when its
+/// dimensions do not match the system), so that a time stepper allocates it once.
+SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options,
+                          BandedMatrix* workspace = nullptr);
 
 }  // namespace core
 }  // namespace mooring_dynamics

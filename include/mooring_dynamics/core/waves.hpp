@@ -60,10 +60,75 @@ class WaveField {
   void acceleration(double x, double y, double z, double t, double& ax, double& ay, double& az) const;
 
  private:
+  friend class WaveVelocityCache;
   double rampFactor(double t) const;
+  /// Per-component constants of velocity(), computed once in the constructor (the velocity is
+  /// evaluated at every node in every Newton iteration of the dynamic solver).
+  struct Kinematics {
+    double aw = 0.0;        ///< amplitude * omega [m/s]
+    double cd = 1.0, sd = 0.0;  ///< cos and sin of the direction
+    bool deep = false;      ///< k * depth above the deep-water threshold (exponential form)
+    double den = 1.0;       ///< deep: 1 - e^{-2 k h}; otherwise sinh(k h)
+    double e2kh = 0.0;      ///< deep: e^{-2 k h}
+    double z_skip = 0.0;    ///< deep: below this elevation the component's velocity is negligible
+  };
+  void precompute();
   std::vector<WaveComponent> components_;
+  std::vector<Kinematics> kin_;
+  double z_all_negligible_ = 0.0;  ///< below this elevation every component is negligible
   double depth_ = 100.0;
   double ramp_ = 0.0;
+};
+
+/// Water-particle velocity of a WaveField in the x-z plane (y = 0) at a fixed set of points
+/// that move little between evaluations, such as the nodes of a line over the Newton iterations
+/// of its time steps. The phase of component i at point x and time t is split as
+/// B_i + A_i with A_i = phase_i - omega_i t (cos, sin once per time for all points) and
+/// B_i = k_i cos(theta_i) x, whose cos and sin are kept per point at a reference abscissa and
+/// carried to x by the angle-addition formulas with a Taylor series of the small difference
+/// (refreshed when |k_i cos(theta_i) (x - x_ref)| would exceed kTaylorRadius). The value is
+/// WaveField::velocity(x, 0, z, t) up to rounding: one sincos per component and time instead
+/// of one per component, point and evaluation.
+class WaveVelocityCache {
+ public:
+  WaveVelocityCache() = default;
+  /// For `points` points of `field` (which must outlive the cache).
+  WaveVelocityCache(const WaveField* field, std::size_t points);
+  bool empty() const { return field_ == nullptr || field_->empty(); }
+  /// Time of the following evaluations [s].
+  void setTime(double t);
+  /// (vx, vz) at point i at (x, 0, z) and the time of setTime [m/s].
+  void velocity(std::size_t i, double x, double z, double& vx, double& vz);
+
+  /// Largest phase difference carried by the Taylor series [rad]: the terms left out are below
+  /// 0.2^15 / 15! ~ 3e-23.
+  static constexpr double kTaylorRadius = 0.2;
+
+ private:
+  /// One component's constants, in the cache's order (increasing skip depth z_skip, so that
+  /// the components a point at elevation z sees are a prefix of the list).
+  struct Comp {
+    double k = 0.0, omega = 0.0, phase = 0.0;
+    double aw = 0.0;          ///< amplitude * omega
+    double cd = 1.0;          ///< cos(theta)
+    double kx = 0.0;          ///< k cos(theta)
+    bool deep = false;
+    double inv_den = 1.0;     ///< 1 / (1 - e^{-2kh}) (deep) or 1 / sinh(kh)
+    double e2kh = 0.0;        ///< deep: e^{-2kh}
+    double z_e2 = 0.0;        ///< deep: above this elevation e^{-k(z+2h)} < 1e-17 e^{kz}
+    double z_skip = 0.0;      ///< deep: below it the component is negligible; -inf otherwise
+    bool hyperbolic = true;   ///< not deep: sinh(kh) > 0 (else WaveField's depthFactors)
+  };
+  const WaveField* field_ = nullptr;
+  std::size_t nc_ = 0;
+  double t_ = 0.0;
+  bool have_time_ = false;
+  double ramp_ = 1.0;
+  double kx_max_ = 0.0;                 ///< max_i |k_i cos(theta_i)| [rad/m]
+  std::vector<Comp> comps_;
+  std::vector<double> cos_a_, sin_a_;   ///< of A_i at the current time
+  std::vector<double> x_ref_;           ///< per point; NaN until first used
+  std::vector<double> cos_b_, sin_b_;   ///< per point and component, of B_i at x_ref
 };
 
 /// Wavenumber k [rad/m] solving omega^2 = g k tanh(k h) (Newton iteration; deep-water start).

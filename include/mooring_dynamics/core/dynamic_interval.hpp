@@ -1,0 +1,42 @@
+// One half-grid interval (h > 0) of a generalized-alpha time step of the 2-D dynamic equations,
+// in double with a hand-coded Jacobian: the same rows as DynamicStepSystem built from the
+// templates of equations2d_dynamic.hpp with automatic differentiation (eqs. 1-6 and 42 times h,
+// eq. 11; mass matrix of eq. 8 averaged between the levels with the alpha_k weights, eq. 30 with
+// 31 as read in docs/method.md), at a fraction of the cost. test_dynamic_interval checks value
+// and Jacobian against the AutoDiff templates; test_dynamics2d checks the assembled Jacobian
+// against finite differences.
+#pragma once
+
+#include "mooring_dynamics/core/equations2d_dynamic.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+namespace eq2dyn {
+
+/// A node's state with the cosine and sine of its inclination and the water at it.
+struct NodeView {
+  const double* y = nullptr;  ///< N unknowns
+  double c = 1.0, s = 0.0;    ///< cos(phi), sin(phi)
+  const Water* w = nullptr;
+};
+
+/// Weights of one step: r = (1 - ak) [I(Y, Yd~) + S(Y)] + ak [I(Yp, Yd~) + S(Yp)] in rows 0-5,
+/// r = S(Y) in rows 6-7, with the weighted rate Yd~ = (1 - am) Yd + am Ydp whose derivative
+/// along its own unknown is wr = (1 - am) / (gamma dt) (eqs. 26, 30).
+struct StepWeights {
+  double ak = 0.0;
+  double wr = 0.0;
+};
+
+/// Rows R[0..7] of interval (a, b) of length h > 0 and material m at the new level (a, b), the
+/// previous level (pa, pb) with its spatial rows Sprev[0..7], and the weighted rates yda, ydb.
+/// When J is non-null, J[q][k] = dR[q] / dY_k with k < N the unknowns of node a and k >= N those
+/// of node b (all 8 x 16 entries written). The wave velocity's dependence on the node position
+/// is left out, as in the AutoDiff version (a quasi-Newton term, docs/method.md).
+void intervalStepRows(const Environment& env, const Material& m, double h, const NodeView& a, const NodeView& b,
+                      const NodeView& pa, const NodeView& pb, const double* yda, const double* ydb,
+                      const StepWeights& wts, const double* Sprev, double* R, double (*J)[2 * N]);
+
+}  // namespace eq2dyn
+}  // namespace core
+}  // namespace mooring_dynamics
