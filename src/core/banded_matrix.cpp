@@ -257,17 +257,21 @@ void BandedMatrix::setBlockStructure(int block, int lead) {
     std::fill(ab_.begin(), ab_.end(), 0.0);
     return;
   }
-  if (!(block == 8 && lead == 5) || n_ % block != 0 || kl_ < lead + block - 1 || ku_ < 2 * block - 1 - lead)
+  const bool kernel = (block == 8 && lead == 5) || (block == 16 && (lead == 10 || lead == 7));
+  if (!kernel || n_ % block != 0 || kl_ < lead + block - 1 || ku_ < 2 * block - 1 - lead)
     throw std::invalid_argument("BandedMatrix::setBlockStructure(" + std::to_string(block) + ", " +
                                 std::to_string(lead) + "): does not fit n = " + std::to_string(n_) +
                                 ", kl = " + std::to_string(kl_) + ", ku = " + std::to_string(ku_));
   block_ = block;
   lead_ = lead;
-  rows_.assign(static_cast<std::size_t>(n_) * 2 * block_, 0.0);
-  panels_.assign(static_cast<std::size_t>(n_ / 8) * 13 * 16, 0.0);
-  lower_.assign(static_cast<std::size_t>(n_ / 8) * 8 * 16, 0.0);
+  // Panels of M = lead + block rows by W = 2 block columns, multipliers padded to LP rows.
+  const std::size_t nodes = static_cast<std::size_t>(n_ / block), M = static_cast<std::size_t>(lead + block),
+                    W = static_cast<std::size_t>(2 * block), LP = (M + 3) / 4 * 4;
+  rows_.assign(static_cast<std::size_t>(n_) * W, 0.0);
+  panels_.assign(nodes * M * W, 0.0);
+  lower_.assign(nodes * static_cast<std::size_t>(block) * LP, 0.0);
   inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
-  perm_.assign(static_cast<std::size_t>(n_ / 8) * 13, 0);
+  perm_.assign(nodes * M, 0);
 }
 
 void BandedMatrix::throwOutsidePattern(int i, int j) const {
@@ -306,6 +310,10 @@ int BandedMatrix::factorize() {
   int info = 0;
   if (block_ == 8 && lead_ == 5)
     info = blockFactor<8, 5>(n_, rows_.data(), panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data(), perm_.data());
+  else if (block_ == 16 && lead_ == 10)  // 3-D, anchored
+    info = blockFactor<16, 10>(n_, rows_.data(), panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data(), perm_.data());
+  else if (block_ == 16 && lead_ == 7)   // 3-D, free lower end
+    info = blockFactor<16, 7>(n_, rows_.data(), panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data(), perm_.data());
   else if (kl_ == 12 && ku_ == 10)
     info = bandFactor<12, 10>(n_, ab_.data(), ipiv_.data());
   else if (kl_ == 8 && ku_ == 8)
@@ -325,6 +333,14 @@ void BandedMatrix::solve(Eigen::VectorXd& b) const {
   if (b.size() != n_) throw std::invalid_argument("BandedMatrix::solve: right-hand side of wrong size");
   if (block_ == 8 && lead_ == 5) {
     blockSolve<8, 5>(n_, panels_.data(), lower_.data(), perm_.data(), inv_diag_.data(), b.data());
+    return;
+  }
+  if (block_ == 16 && lead_ == 10) {
+    blockSolve<16, 10>(n_, panels_.data(), lower_.data(), perm_.data(), inv_diag_.data(), b.data());
+    return;
+  }
+  if (block_ == 16 && lead_ == 7) {
+    blockSolve<16, 7>(n_, panels_.data(), lower_.data(), perm_.data(), inv_diag_.data(), b.data());
     return;
   }
   const int kv = kl_ + ku_;

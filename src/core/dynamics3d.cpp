@@ -90,6 +90,7 @@ struct DynamicSolver3D::Impl {
   double S_top[3] = {0.0, 0.0, 0.0};  ///< subsurface top body: spatial part of its balance at time t
   double chi[N];
   Totals totals;
+  BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
@@ -162,6 +163,9 @@ class DynamicStepSystem3D : public NewtonSystem {
   // Interval j's rows start at end_rows_ + N j and touch nodes j, j + 1.
   int lowerBandwidth() const override { return end_rows_ + N - 1; }
   int upperBandwidth() const override { return 2 * N - 1 - end_rows_; }
+  // Node-by-node block elimination (BandedMatrix::setBlockStructure).
+  int blockSize() const override { return N; }
+  int leadingRows() const override { return end_rows_; }
   double scale(int i) const override { return im_.chi[i % N]; }
   std::string describe(int i) const override {
     const std::size_t j = static_cast<std::size_t>(i / N);
@@ -445,7 +449,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   no.max_iterations = im.opt.max_iterations;
   no.mu0 = im.opt.relaxation;
   no.adaptive = im.opt.adaptive_relaxation;
-  const SolverSummary s = solveNewton(sys, Yv, no);
+  const SolverSummary s = solveNewton(sys, Yv, no, &im.newton_matrix);
   rep.newton_iterations += s.iterations;
   im.totals.newton_iterations += s.iterations;
   if (!s.converged) {

@@ -69,7 +69,8 @@ class BandedMatrix {
   /// partial pivoting as the band LU (every other row of the band is zero in those columns),
   /// less than half of the multiply-adds and no stride-ldab access. The entries are then stored by rows (2 * block values from the row's first node)
   /// instead of the band, and at() throws std::out_of_range outside the pattern. Only
-  /// (block, lead) = (8, 5), the dynamic solver's layout, has a kernel; (0, 0) returns to the
+  /// (block, lead) = (8, 5) (2-D dynamics), (16, 10) and (16, 7) (3-D, anchored and with a free
+  /// lower end) have a kernel; (0, 0) returns to the
   /// band. Changing the structure zeroes the matrix. Throws std::invalid_argument for another
   /// structure or one the band cannot hold.
   void setBlockStructure(int block, int lead);

@@ -27,6 +27,8 @@ class StaticSystem3D : public NewtonSystem {
   int size() const override;
   int lowerBandwidth() const override { return 25; }
   int upperBandwidth() const override { return 21; }
+  int blockSize() const override { return 16; }    // node-by-node block elimination
+  int leadingRows() const override { return 10; }
   void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override;
   double scale(int i) const override;
   std::string describe(int i) const override;
