@@ -176,6 +176,7 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
     << "  \"steps\": " << r.steps << ",\n"
     << "  \"cuts\": " << r.cuts << ",\n"
     << "  \"newton_iterations\": " << r.newton_iterations << ",\n"
+    << "  \"jacobians\": " << r.jacobians << ",\n"
     << "  \"wall_seconds\": " << jsonNum(r.wall_seconds) << ",\n"
     << "  \"real_time_factor\": " << jsonNum(g.rtf) << ",\n"
     << "  \"record_s\": [";
@@ -200,7 +201,9 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
     << " N, min " << fmtNum("%.1f", g.top.min) << " N, max " << fmtNum("%.1f", g.top.max) << " N\n";
   o << "  static top     " << fmtNum("%.1f", g.static_top) << " N\n";
   o << "  solver         " << r.steps << " steps, " << r.cuts << " cuts, " << r.newton_iterations
-    << " Newton iterations\n";
+    << " Newton iterations";
+  if (r.jacobians > 0 && r.jacobians != r.newton_iterations) o << " (" << r.jacobians << " Jacobians)";
+  o << "\n";
   o << "  wall time      " << fmtNum("%.3g", r.wall_seconds) << " s, real-time factor "
     << (std::isfinite(g.rtf) ? fmtNum("%.3g", g.rtf) : std::string("inf")) << "\n";
   return o.str();

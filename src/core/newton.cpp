@@ -11,11 +11,12 @@ namespace core {
 
 namespace {
 
-/// sigma = (1/(N n)) sum_m (1/chi_m) sum_j |dY_jm|   (eq. 39), with the largest term reported.
-double scaledUpdate(const NewtonSystem& system, const Eigen::VectorXd& dY, int* worst) {
+/// sigma = (1/(N n)) sum_m (1/chi_m) sum_j |dY_jm|   (eq. 39), with the largest term reported;
+/// inv_chi holds 1 / chi_m of every unknown.
+double scaledUpdate(const Eigen::VectorXd& inv_chi, const Eigen::VectorXd& dY, int* worst) {
   double sum = 0.0, largest = -1.0;
   for (int i = 0; i < dY.size(); ++i) {
-    const double term = std::abs(dY[i]) / system.scale(i);
+    const double term = std::abs(dY[i]) * inv_chi[i];
     sum += term;
     if (term > largest) {
       largest = term;
@@ -28,7 +29,7 @@ double scaledUpdate(const NewtonSystem& system, const Eigen::VectorXd& dY, int* 
 }  // namespace
 
 SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options,
-                          BandedMatrix* workspace) {
+                          BandedMatrix* workspace, NewtonWork* work) {
   SolverSummary summary;
   const int n = system.size();
   BandedMatrix local;
@@ -36,38 +37,66 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
   if (J.size() != n || J.lower() != system.lowerBandwidth() || J.upper() != system.upperBandwidth())
     J = BandedMatrix(n, system.lowerBandwidth(), system.upperBandwidth());
   J.setBlockStructure(system.blockSize(), system.leadingRows());
-  Eigen::VectorXd R(n), dY(n);
+  Eigen::VectorXd R(n), dY(n), inv_chi(n);
+  for (int i = 0; i < n; ++i) inv_chi[i] = 1.0 / system.scale(i);
   double mu = options.mu0;
   double sigma_prev = 0.0;
   int worst = 0;
+  NewtonWork counts;
+  // Modified Newton: start from a factorization kept in the workspace (setBlockStructure leaves
+  // it when the structure is unchanged); otherwise, and whenever the kept one converges too
+  // slowly, assemble afresh.
+  bool fresh = !(options.reuse_jacobian && J.factorized());
 
   for (int k = 0; k < options.max_iterations; ++k) {
-    // Assemble residual and Jacobian at the current iterate.
-    J.setZero();
-    system.evaluate(Y, R, &J);
+    const bool assembled = fresh;
+    if (fresh) {
+      // Assemble residual and Jacobian at the current iterate.
+      J.setZero();
+      system.evaluate(Y, R, &J);
+      ++counts.assemblies;
+    } else {
+      system.evaluate(Y, R, nullptr);
+      ++counts.residuals;
+    }
     if (!R.allFinite()) {
       summary.iterations = k;
       summary.message = "residual is not finite at iteration " + std::to_string(k);
+      if (work) *work = counts;
       return summary;
     }
-    // Factor and solve for the Newton update dY = -J^{-1} R.
-    const int info = J.factorize();
-    if (info != 0) {
-      summary.iterations = k;
-      summary.message = "singular Newton matrix at iteration " + std::to_string(k) + ", unknown " +
-                        system.describe(info - 1);
-      return summary;
+    if (fresh) {
+      // Factor and solve for the Newton update dY = -J^{-1} R.
+      const int info = J.factorize();
+      if (info != 0) {
+        summary.iterations = k;
+        summary.message = "singular Newton matrix at iteration " + std::to_string(k) + ", unknown " +
+                          system.describe(info - 1);
+        if (work) *work = counts;
+        return summary;
+      }
+      fresh = !options.reuse_jacobian;  // plain Newton assembles at every iterate
     }
     dY = -R;
     J.solve(dY);
     if (!dY.allFinite()) {
+      if (!assembled) {  // a kept factorization gone bad: try a fresh one at this iterate
+        fresh = true;
+        continue;
+      }
       summary.iterations = k;
       summary.message = "Newton update is not finite at iteration " + std::to_string(k);
+      if (work) *work = counts;
       return summary;
     }
     system.conditionStep(Y, dY);
     // Error measure and adaptive relaxation (eqs. 39-41).
-    const double sigma = scaledUpdate(system, dY, &worst);
+    const double sigma = scaledUpdate(inv_chi, dY, &worst);
+    if (options.reuse_jacobian && !assembled && k > 0 && sigma > options.reuse_rate * sigma_prev) {
+      // The kept Jacobian no longer contracts fast enough: redo this update with a fresh one.
+      fresh = true;
+      continue;
+    }
     if (options.adaptive && k > 0) {
       if (sigma > sigma_prev) mu /= options.R1;
       else mu *= options.R2;
@@ -75,8 +104,8 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
     }
     sigma_prev = sigma;
     if (std::getenv("MD_NEWTON_TRACE"))
-      std::fprintf(stderr, "newton %d sigma %.3e mu %.3e worst %s dY %.3e\n", k, sigma, mu,
-                   system.describe(worst).c_str(), dY[worst]);
+      std::fprintf(stderr, "newton %d sigma %.3e mu %.3e worst %s dY %.3e%s\n", k, sigma, mu,
+                   system.describe(worst).c_str(), dY[worst], assembled ? "" : " (kept Jacobian)");
     Y += std::min(mu, system.stepLimit(dY)) * dY;  // eq. 38
     summary.iterations = k + 1;
     summary.error = sigma;
@@ -86,9 +115,11 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       std::ostringstream os;
       os << "converged in " << summary.iterations << " iterations (sigma = " << sigma << ")";
       summary.message = os.str();
+      if (work) *work = counts;
       return summary;
     }
   }
+  if (work) *work = counts;
   std::ostringstream os;
   os << "did not converge in " << options.max_iterations << " iterations: sigma = " << summary.error
      << " (tolerance " << options.tolerance << "), relaxation " << mu << "; largest update at "

@@ -207,7 +207,7 @@ void readTopMotion(const Item& it, TopMotion& tm) {
 void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   const Map m(it, {"duration", "dt", "output_interval", "snapshot_interval", "record_s", "scheme", "lambda_inf",
                    "alpha_m", "alpha_k", "gamma", "max_cut_levels", "tolerance", "max_iterations", "relaxation",
-                   "adaptive_relaxation", "adaptive_mesh", "mesh_weight", "top_motion"});
+                   "adaptive_relaxation", "jacobian_reuse", "adaptive_mesh", "mesh_weight", "top_motion"});
   d.duration = m.number("duration", d.duration, Range::Positive);
   d.dt = m.number("dt", d.dt, Range::Positive);
   if (m.has("output_interval")) {
@@ -299,6 +299,7 @@ void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
     if (!(d.relaxation > 0.0 && d.relaxation <= 1.0)) r.fail("must be in (0, 1]");
   }
   if (m.has("adaptive_relaxation")) d.adaptive_relaxation = readBool(m.at("adaptive_relaxation"));
+  if (m.has("jacobian_reuse")) d.jacobian_reuse = readBool(m.at("jacobian_reuse"));
   if (m.has("adaptive_mesh")) d.adaptive_mesh = readBool(m.at("adaptive_mesh"));
   d.mesh_weight = m.number("mesh_weight", d.mesh_weight, Range::NonNegative);
 

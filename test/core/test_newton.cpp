@@ -346,3 +346,34 @@ TEST(Newton, NonFiniteResidualIsReported) {
   EXPECT_EQ(s.iterations, 0);
   EXPECT_TRUE(contains(s.message, "not finite"));
 }
+
+TEST(Newton, ModifiedNewtonReachesTheSameRootWithFewerJacobians) {
+  // Modified Newton (reuse_jacobian): the same root to the tolerance; a second solve from a
+  // nearby start reuses the first call's factorization (none assembled unless it contracts
+  // too slowly); plain Newton assembles at every iterate.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd root(30);
+  for (int i = 0; i < root.size(); ++i) root[i] = u(rng);
+  CubicChain sys(root);
+  NewtonOptions plain;
+  plain.tolerance = 1e-12;
+  NewtonOptions kept = plain;
+  kept.reuse_jacobian = true;
+  BandedMatrix ws;
+  NewtonWork wp, wk, wk2;
+  Eigen::VectorXd Yp = Eigen::VectorXd::Constant(root.size(), 0.1), Yk = Yp;
+  ASSERT_TRUE(solveNewton(sys, Yp, plain, nullptr, &wp).converged);
+  ASSERT_TRUE(solveNewton(sys, Yk, kept, &ws, &wk).converged);
+  constexpr double kRootTol = 1e-10;  // both stop on updates below 1e-12 per unknown
+  EXPECT_LT((Yp - root).cwiseAbs().maxCoeff(), kRootTol);
+  EXPECT_LT((Yk - root).cwiseAbs().maxCoeff(), kRootTol);
+  EXPECT_EQ(wp.residuals, 0);
+  EXPECT_LT(wk.assemblies, wp.assemblies);
+  EXPECT_GT(wk.residuals, 0);
+  // A nearby start: the kept factorization is used from the first iteration.
+  Eigen::VectorXd Y2 = root + Eigen::VectorXd::Constant(root.size(), 1e-4);
+  ASSERT_TRUE(solveNewton(sys, Y2, kept, &ws, &wk2).converged);
+  EXPECT_EQ(wk2.assemblies, 0);
+  EXPECT_LT((Y2 - root).cwiseAbs().maxCoeff(), kRootTol);
+}

@@ -327,3 +327,21 @@ TEST(TowingDynamics, ImpulsiveHeadingChangeLeavesCrankNicolsonNoiseOnlyWithTheBo
   constexpr double kNoiseRatio = 5.0;
   EXPECT_GT(nb, kNoiseRatio * nd);
 }
+
+TEST(TowingDynamics, ModifiedNewtonGivesTheSameTowWithFewerJacobians) {
+  // jacobian_reuse keeps factored Jacobians across iterations and steps: the same tensions to
+  // the Newton tolerance (measured 1e-7 relative on the paper's A.1), far fewer assemblies.
+  Problem p = towRun(3.0);
+  p.dynamics.duration = 150.0;
+  p.dynamics.top_motion.ship_track.legs = {ShipLeg::straight(20.0), ShipLeg::turn(200.0, kPi / 3)};
+  const DynamicSeries full = runDynamic3D(p);
+  p.dynamics.jacobian_reuse = true;
+  const DynamicSeries kept = runDynamic3D(p);
+  ASSERT_TRUE(full.completed && kept.completed) << full.message << kept.message;
+  ASSERT_EQ(full.t.size(), kept.t.size());
+  constexpr double kSameRelTol = 1e-5;  // a few Newton tolerances (1e-6) of the tension
+  for (std::size_t k = 0; k < full.t.size(); ++k)
+    EXPECT_NEAR(kept.top_tension[k], full.top_tension[k], kSameRelTol * full.top_tension[0]) << full.t[k];
+  EXPECT_EQ(full.jacobians, full.newton_iterations);
+  EXPECT_LT(kept.jacobians * 5, full.jacobians);
+}

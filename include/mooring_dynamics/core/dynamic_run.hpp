@@ -134,6 +134,7 @@ DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(do
   out.steps = tot.steps;
   out.cuts = tot.cuts;
   out.newton_iterations = tot.newton_iterations;
+  out.jacobians = tot.jacobians;
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;
 }

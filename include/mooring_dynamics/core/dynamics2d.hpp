@@ -64,6 +64,7 @@ class DynamicSolver2D {
 
   struct Totals {
     long steps = 0, cuts = 0, newton_iterations = 0;
+    long jacobians = 0;  ///< Jacobians assembled and factored (3-D solver; 0 from the 2-D one)
   };
   Totals totals() const;
 
@@ -90,6 +91,7 @@ struct DynamicSeries {
   bool completed = false;
   std::string message;                          ///< failure message when not completed
   long steps = 0, cuts = 0, newton_iterations = 0;
+  long jacobians = 0;  ///< Jacobians assembled (3-D; 0 from the 2-D solver, one per iteration)
   double wall_seconds = 0.0;
 };
 
