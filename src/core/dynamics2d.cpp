@@ -51,6 +51,7 @@ struct DynamicSolver2D::Impl {
   double chi[N];
   Totals totals;
   BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
+  double factored_dt = 0.0;    ///< step size the factorization in newton_matrix belongs to [s]
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
@@ -437,10 +438,17 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   no.max_iterations = im.opt.max_iterations;
   no.mu0 = im.opt.relaxation;
   no.adaptive = im.opt.adaptive_relaxation;
-  const SolverSummary s = solveNewton(sys, Y, no, &im.newton_matrix);
+  // Modified Newton (dynamics.jacobian_reuse): a kept factorization belongs to one step size.
+  no.reuse_jacobian = im.opt.jacobian_reuse;
+  if (dt != im.factored_dt) im.newton_matrix.setZero();
+  NewtonWork work;
+  const SolverSummary s = solveNewton(sys, Y, no, &im.newton_matrix, &work);
+  im.factored_dt = dt;
   rep.newton_iterations += s.iterations;
   im.totals.newton_iterations += s.iterations;
+  im.totals.jacobians += work.assemblies;
   if (!s.converged) {
+    im.newton_matrix.setZero();  // factored at an iterate that did not converge
     std::ostringstream os;
     os << "t = " << t_new << " s (dt = " << dt << " s): " << s.message;
     rep.message = os.str();
