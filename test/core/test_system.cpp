@@ -1,0 +1,207 @@
+// Systems of lines (issue 6: multi-leg and branched arrays) against independent answers: a
+// symmetric three-leg buoy mooring (equal leg tensions, no offset in still water), two legs on a
+// fixed junction (two independent Irvine catenaries), a branched array's junction force balance
+// checked by hand, and the topology checks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mooring_dynamics/core/catenary.hpp"
+#include "mooring_dynamics/core/system.hpp"
+
+using namespace mooring_dynamics::core;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Symmetry: the three legs are the same problem turned by 120 deg; the point iteration stops
+// on a force residual of 1e-6 of the tension, which bounds the asymmetry.
+constexpr double kSymmetryRelTol = 1e-5;
+constexpr double kOffsetTol = 1e-3;  // [m] buoy offset of a symmetric mooring
+// Irvine at 1 m spacing: the box scheme's O(h^2) error, about 1e-4 relative.
+constexpr double kCatenaryRelTol = 1e-3;
+// Force balances hold to the point iteration's tolerance (1e-6 of the largest tension).
+constexpr double kBalanceRelTol = 1e-5;
+
+Material chain() {
+  Material m;
+  m.name = "chain";
+  m.EA = 5.0e8;
+  m.EI = 10.0;
+  m.GJ = 1.0;
+  m.mass = 40.0;
+  m.added_mass = 5.0;
+  m.wet_weight = 300.0;
+  m.diameter = 0.08;
+  m.cdn = 2.4;
+  m.cdt = 1.15;
+  return m;
+}
+
+SystemPoint point(const std::string& name, SystemPoint::Type t, double x, double y, double z) {
+  SystemPoint p;
+  p.name = name;
+  p.type = t;
+  p.x = x;
+  p.y = y;
+  p.z = z;
+  return p;
+}
+
+SystemLine line(const std::string& name, std::size_t from, std::size_t to, double length, double spacing) {
+  SystemLine l;
+  l.name = name;
+  l.from = from;
+  l.to = to;
+  Segment s;
+  s.length = length;
+  s.spacing = spacing;
+  l.segments = {s};
+  return l;
+}
+
+/// A surface buoy held by three 300 m chain legs to anchors 250 m away at 120 deg, 100 m deep.
+SystemProblem threeLeg(double current) {
+  SystemProblem s;
+  s.name = "three-leg buoy mooring";
+  s.environment.depth = 100.0;
+  s.environment.seabed.stiffness = 1.0e5;
+  if (current > 0.0) s.environment.current = {{0.0, current, 0.0}};
+  s.materials = {chain()};
+  SystemPoint b = point("buoy", SystemPoint::Type::Buoy, 0.0, 0.0, -1.0);
+  b.buoy.shape = SurfaceBuoy::Shape::Cylinder;
+  b.buoy.diameter = 4.0;
+  b.buoy.height = 3.0;
+  b.buoy.mass = 5000.0;
+  b.buoy.cd = 1.0;
+  s.points.push_back(b);
+  for (int k = 0; k < 3; ++k) {
+    const double a = 2.0 * kPi * k / 3.0;
+    s.points.push_back(point("anchor" + std::to_string(k), SystemPoint::Type::Anchor, 250.0 * std::cos(a),
+                             250.0 * std::sin(a), -100.0));
+    s.lines.push_back(line("leg" + std::to_string(k), static_cast<std::size_t>(k + 1), 0, 300.0, 5.0));
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST(System, SymmetricThreeLegMooringHasEqualLegsAndNoOffset) {
+  const SystemStaticResult r = solveSystemStatic(threeLeg(0.0));
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  const double T0 = r.lines[0].topTension();
+  for (int k = 1; k < 3; ++k) EXPECT_NEAR(r.lines[k].topTension(), T0, kSymmetryRelTol * T0) << k;
+  EXPECT_NEAR(r.points[0].x, 0.0, kOffsetTol);
+  EXPECT_NEAR(r.points[0].y, 0.0, kOffsetTol);
+  // The buoy carries the three legs' vertical pulls by its draft.
+  double Fz = 0.0;
+  for (const auto& l : r.lines) Fz += l.top_force_z;
+  const SurfaceBuoy& b = threeLeg(0.0).points[0].buoy;
+  const double draft = r.points[0].buoy_draft;
+  EXPECT_NEAR(1025.0 * 9.81 * b.submergedVolume(draft) - b.mass * 9.81, Fz, kBalanceRelTol * T0);
+  EXPECT_GT(draft, 0.0);
+  EXPECT_LT(draft, b.height);
+}
+
+TEST(System, CurrentPushesTheBuoyDownstreamAndLoadsTheUpstreamLeg) {
+  const SystemStaticResult r = solveSystemStatic(threeLeg(0.5));
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  EXPECT_GT(r.points[0].x, 0.1);                                  // downstream (+x)
+  EXPECT_NEAR(r.points[0].y, 0.0, kOffsetTol);                    // symmetric about the x axis
+  // Legs 1 and 2 (anchors at 120 and 240 deg, upstream) hold the buoy; leg 0 slackens.
+  EXPECT_GT(r.lines[1].topTension(), r.lines[0].topTension());
+  EXPECT_NEAR(r.lines[1].topTension(), r.lines[2].topTension(), kSymmetryRelTol * r.lines[1].topTension());
+}
+
+TEST(System, TwoLegsOnAFixedJunctionAreTwoIndependentCatenaries) {
+  SystemProblem s;
+  s.environment.depth = 300.0;
+  Material w;
+  w.name = "wire";
+  w.EA = 1.0e7;
+  w.EI = 1.0e-2;
+  w.GJ = 1.0e-2;
+  w.mass = 10.0;
+  w.wet_weight = 100.0;
+  w.diameter = 0.03;
+  w.cdn = 1.2;
+  w.cdt = 0.01;
+  s.materials = {w};
+  s.points = {point("junction", SystemPoint::Type::Fixed, 0.0, 0.0, -20.0),
+              point("west", SystemPoint::Type::Anchor, -150.0, 0.0, -100.0),
+              point("north", SystemPoint::Type::Anchor, 0.0, 120.0, -100.0)};
+  s.lines = {line("a", 1, 0, 200.0, 1.0), line("b", 2, 0, 160.0, 1.0)};
+  const SystemStaticResult r = solveSystemStatic(s);
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  EXPECT_EQ(r.summary.iterations, 0);  // nothing free: the lines alone
+  const CatenarySolution a = solveCatenary({200.0, 100.0, 1.0e7, 150.0, 80.0, false});
+  const CatenarySolution b = solveCatenary({160.0, 100.0, 1.0e7, 120.0, 80.0, false});
+  ASSERT_TRUE(a.converged && b.converged);
+  EXPECT_NEAR(r.lines[0].topTension(), a.topTension(), kCatenaryRelTol * a.topTension());
+  EXPECT_NEAR(r.lines[1].topTension(), b.topTension(), kCatenaryRelTol * b.topTension());
+  // The junction resists both pulls.
+  EXPECT_NEAR(r.points[0].fz, -(a.V + b.V), kCatenaryRelTol * (a.V + b.V));
+}
+
+TEST(System, BranchedArrayJunctionBalancesByHand) {
+  // Main line: anchor A -> junction float J -> fixed top F; a side branch from anchor B up to J.
+  // At J the three lines' pulls and the float's net buoyancy (and drag) sum to zero.
+  SystemProblem s;
+  s.environment.depth = 100.0;
+  s.environment.current = {{0.0, 0.3, 0.0}};
+  s.materials = {chain()};
+  s.materials[0].EA = 2.0e7;  // wire rope
+  s.materials[0].wet_weight = 20.0;
+  s.materials[0].diameter = 0.03;
+  Body f;
+  f.name = "float";
+  f.mass = 300.0;
+  f.added_mass = 300.0;
+  f.wet_weight = -3000.0;
+  f.diameter = 1.0;
+  f.cdn = 0.5;
+  f.cdt = 0.5;
+  s.bodies = {f};
+  SystemPoint J = point("J", SystemPoint::Type::Body, 40.0, 10.0, -45.0);
+  J.body = 0;
+  J.position_given = true;
+  s.points = {point("A", SystemPoint::Type::Anchor, 0.0, 0.0, -100.0), J,
+              point("F", SystemPoint::Type::Fixed, 90.0, 0.0, -5.0),
+              point("B", SystemPoint::Type::Anchor, 60.0, 40.0, -100.0)};
+  s.lines = {line("main_lower", 0, 1, 75.0, 1.0), line("main_upper", 1, 2, 75.0, 1.0), line("branch", 3, 1, 75.0, 1.0)};
+  const SystemStaticResult r = solveSystemStatic(s);
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  // Hand balance at J: -top force of the lines ending there, + anchor force of the one starting.
+  const StaticResult &lo = r.lines[0], &up = r.lines[1], &br = r.lines[2];
+  const double U = 0.3, q = 0.5 * 1025.0 * 0.25 * kPi * 1.0 * 0.5 * U * U;
+  const double Fx = -lo.top_force_x - br.top_force_x + up.anchor_force_x + q;
+  const double Fy = -lo.top_force_y - br.top_force_y + up.anchor_force_y;
+  const double Fz = -lo.top_force_z - br.top_force_z + up.anchor_force_z + 3000.0;
+  const double T = std::max({lo.topTension(), up.topTension(), br.topTension()});
+  EXPECT_NEAR(Fx, 0.0, kBalanceRelTol * T);
+  EXPECT_NEAR(Fy, 0.0, kBalanceRelTol * T);
+  EXPECT_NEAR(Fz, 0.0, kBalanceRelTol * T);
+  // The lines meet at J: every end is where the point is.
+  EXPECT_NEAR(lo.nodes.back().x, r.points[1].x, 1e-6);
+  EXPECT_NEAR(up.nodes.front().z, r.points[1].z, 1e-6);
+  EXPECT_NEAR(br.nodes.back().y, r.points[1].y, 1e-6);
+  EXPECT_GT(r.points[1].y, 0.5);  // the branch pulls J toward B's side
+}
+
+TEST(System, TopologyErrorsNameTheProblem) {
+  SystemProblem s = threeLeg(0.0);
+  s.points.push_back(point("spare", SystemPoint::Type::Anchor, 0, 0, -100));
+  EXPECT_NE(s.validate().find("points.spare: not joined"), std::string::npos) << s.validate();
+  s = threeLeg(0.0);
+  s.points.push_back(point("far", SystemPoint::Type::Anchor, 900, 0, -100));
+  s.points.push_back(point("far_buoy", SystemPoint::Type::Buoy, 900, 0, 0));
+  s.lines.push_back(line("separate", 4, 5, 120.0, 5.0));
+  EXPECT_NE(s.validate().find("falls apart in 2 pieces"), std::string::npos) << s.validate();
+  s = threeLeg(0.0);
+  for (auto& p : s.points) p.type = SystemPoint::Type::Buoy;
+  EXPECT_NE(s.validate().find("no anchor or fixed point"), std::string::npos) << s.validate();
+  s = threeLeg(0.0);
+  s.lines[0].from = 0;
+  EXPECT_NE(s.validate().find("same point"), std::string::npos) << s.validate();
+  EXPECT_THROW(solveSystemStatic(s), std::invalid_argument);
+}
