@@ -195,6 +195,36 @@ std::size_t lookup(const Item& it, const std::map<std::string, std::size_t>& tab
                      lineSuffix(it.mark));
 }
 
+/// A surface buoy's keys (top.buoy, or a system point of type buoy).
+void readBuoy(const Item& it, SurfaceBuoy& buoy) {
+  const Map b(it, {"shape", "diameter", "height", "mass", "added_mass", "cd", "wind_area", "wind_cd"});
+  buoy.shape = SurfaceBuoy::Shape::Sphere;
+  if (b.has("shape")) {
+    const Item s = b.at("shape");
+    const std::string v = readString(s);
+    if (v == "sphere")
+      buoy.shape = SurfaceBuoy::Shape::Sphere;
+    else if (v == "cylinder")
+      buoy.shape = SurfaceBuoy::Shape::Cylinder;
+    else
+      throw ProblemError(s.path + " = " + quoted(v) + ": unknown shape (known: sphere, cylinder)" +
+                         lineSuffix(s.mark));
+  }
+  buoy.diameter = b.number("diameter", Range::Positive);
+  if (buoy.shape == SurfaceBuoy::Shape::Cylinder) {
+    buoy.height = b.number("height", Range::Positive);
+  } else {
+    if (b.has("height"))
+      b.at("height").fail("only used for shape: cylinder (a sphere's height is its diameter)");
+    buoy.height = buoy.diameter;
+  }
+  buoy.mass = b.number("mass", Range::NonNegative);
+  buoy.added_mass = b.number("added_mass", 0.0, Range::NonNegative);
+  buoy.cd = b.number("cd", 1.0, Range::NonNegative);
+  buoy.wind_area = b.number("wind_area", 0.0, Range::NonNegative);
+  buoy.wind_cd = b.number("wind_cd", 1.0, Range::NonNegative);
+}
+
 void readTop(const Item& it, TopBoundary& top, const std::map<std::string, std::size_t>& body_index,
              const std::vector<std::string>& body_names) {
   const Map m(it, {"position", "force", "buoy", "body", "tow_velocity"});
@@ -230,35 +260,8 @@ void readTop(const Item& it, TopBoundary& top, const std::map<std::string, std::
     top.fy = f.number("y", 0.0, Range::Any);
     top.fz = f.number("z");
   } else {
-    const Map b(m.at("buoy"),
-                {"shape", "diameter", "height", "mass", "added_mass", "cd", "wind_area", "wind_cd"});
     top.type = TopBoundary::Type::Buoy;
-    SurfaceBuoy& buoy = top.buoy;
-    buoy.shape = SurfaceBuoy::Shape::Sphere;
-    if (b.has("shape")) {
-      const Item s = b.at("shape");
-      const std::string v = readString(s);
-      if (v == "sphere")
-        buoy.shape = SurfaceBuoy::Shape::Sphere;
-      else if (v == "cylinder")
-        buoy.shape = SurfaceBuoy::Shape::Cylinder;
-      else
-        throw ProblemError(s.path + " = " + quoted(v) + ": unknown shape (known: sphere, cylinder)" +
-                           lineSuffix(s.mark));
-    }
-    buoy.diameter = b.number("diameter", Range::Positive);
-    if (buoy.shape == SurfaceBuoy::Shape::Cylinder) {
-      buoy.height = b.number("height", Range::Positive);
-    } else {
-      if (b.has("height"))
-        b.at("height").fail("only used for shape: cylinder (a sphere's height is its diameter)");
-      buoy.height = buoy.diameter;
-    }
-    buoy.mass = b.number("mass", Range::NonNegative);
-    buoy.added_mass = b.number("added_mass", 0.0, Range::NonNegative);
-    buoy.cd = b.number("cd", 1.0, Range::NonNegative);
-    buoy.wind_area = b.number("wind_area", 0.0, Range::NonNegative);
-    buoy.wind_cd = b.number("wind_cd", 1.0, Range::NonNegative);
+    readBuoy(m.at("buoy"), top.buoy);
   }
 }
 
@@ -372,6 +375,56 @@ void readLine(const Item& it, Problem& pb, const std::map<std::string, std::size
   if (pb.segments.empty()) it.failNoValue("needs at least one segment {material, length}");
 }
 
+/// Names of the materials and bodies, in file order, for lookups.
+struct Catalogue {
+  std::map<std::string, std::size_t> mat_index, body_index;
+  std::vector<std::string> mat_names, body_names;
+};
+
+/// `materials` (required) and `bodies` (optional) of a problem or system file.
+void readCatalogue(const Map& top, std::vector<Material>& materials, std::vector<Body>& bodies, Catalogue& cat) {
+  {
+    const Item mit = top.required("materials");
+    if (!mit.node.IsMap()) mit.wrongType("a map name -> properties");
+    if (mit.node.size() == 0) mit.failNoValue("needs at least one material");
+    for (auto kv : mit.node) {
+      if (!kv.first.IsScalar())
+        throw ProblemError("materials: names must be plain strings" + lineSuffix(kv.first.Mark()));
+      const std::string name = kv.first.Scalar();
+      if (cat.mat_index.count(name))
+        throw ProblemError("materials." + name + ": duplicate material name" + lineSuffix(kv.first.Mark()));
+      const Item m{kv.second, "materials." + name, markOf(kv.second, kv.first.Mark())};
+      cat.mat_index[name] = materials.size();
+      cat.mat_names.push_back(name);
+      materials.push_back(readMaterial(m, name));
+    }
+  }
+
+  if (presentAndNotNull(top, "bodies")) {
+    const Item bit = top.at("bodies");
+    if (!bit.node.IsMap()) bit.wrongType("a map name -> properties");
+    for (auto kv : bit.node) {
+      if (!kv.first.IsScalar())
+        throw ProblemError("bodies: names must be plain strings" + lineSuffix(kv.first.Mark()));
+      const std::string name = kv.first.Scalar();
+      if (cat.body_index.count(name))
+        throw ProblemError("bodies." + name + ": duplicate body name" + lineSuffix(kv.first.Mark()));
+      const Item b{kv.second, "bodies." + name, markOf(kv.second, kv.first.Mark())};
+      cat.body_index[name] = bodies.size();
+      cat.body_names.push_back(name);
+      bodies.push_back(readBody(b, name));
+    }
+  }
+}
+
+/// `model: 2d | 3d`.
+Formulation readModel(const Item& mi) {
+  const std::string v = readString(mi);
+  if (v == "2d") return Formulation::TwoD;
+  if (v == "3d") return Formulation::ThreeD;
+  throw ProblemError("model = " + quoted(v) + ": unknown model (known: 2d, 3d)" + lineSuffix(mi.mark));
+}
+
 Problem parse(const YAML::Node& root, const std::string& base_dir) {
   if (!root.IsDefined() || root.IsNull())
     throw ProblemError("problem file is empty: expected a map with at least materials, line and top");
@@ -383,56 +436,15 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
                       "solver", "dynamics"});
   Problem pb;
   if (top.has("name")) pb.name = readString(top.at("name"));
-  if (top.has("model")) {
-    const Item mi = top.at("model");
-    const std::string v = readString(mi);
-    if (v == "2d")
-      pb.formulation = Formulation::TwoD;
-    else if (v == "3d")
-      pb.formulation = Formulation::ThreeD;
-    else
-      throw ProblemError("model = " + quoted(v) + ": unknown model (known: 2d, 3d)" + lineSuffix(mi.mark));
-  }
+  if (top.has("model")) pb.formulation = readModel(top.at("model"));
   if (presentAndNotNull(top, "environment")) readEnvironment(top.at("environment"), pb.environment, base_dir);
 
-  // Materials, in file order.
-  std::map<std::string, std::size_t> mat_index;
-  std::vector<std::string> mat_names;
-  {
-    const Item mit = top.required("materials");
-    if (!mit.node.IsMap()) mit.wrongType("a map name -> properties");
-    if (mit.node.size() == 0) mit.failNoValue("needs at least one material");
-    for (auto kv : mit.node) {
-      if (!kv.first.IsScalar())
-        throw ProblemError("materials: names must be plain strings" + lineSuffix(kv.first.Mark()));
-      const std::string name = kv.first.Scalar();
-      if (mat_index.count(name))
-        throw ProblemError("materials." + name + ": duplicate material name" + lineSuffix(kv.first.Mark()));
-      const Item m{kv.second, "materials." + name, markOf(kv.second, kv.first.Mark())};
-      mat_index[name] = pb.materials.size();
-      mat_names.push_back(name);
-      pb.materials.push_back(readMaterial(m, name));
-    }
-  }
-
-  // Bodies (optional).
-  std::map<std::string, std::size_t> body_index;
-  std::vector<std::string> body_names;
-  if (presentAndNotNull(top, "bodies")) {
-    const Item bit = top.at("bodies");
-    if (!bit.node.IsMap()) bit.wrongType("a map name -> properties");
-    for (auto kv : bit.node) {
-      if (!kv.first.IsScalar())
-        throw ProblemError("bodies: names must be plain strings" + lineSuffix(kv.first.Mark()));
-      const std::string name = kv.first.Scalar();
-      if (body_index.count(name))
-        throw ProblemError("bodies." + name + ": duplicate body name" + lineSuffix(kv.first.Mark()));
-      const Item b{kv.second, "bodies." + name, markOf(kv.second, kv.first.Mark())};
-      body_index[name] = pb.bodies.size();
-      body_names.push_back(name);
-      pb.bodies.push_back(readBody(b, name));
-    }
-  }
+  Catalogue cat;
+  readCatalogue(top, pb.materials, pb.bodies, cat);
+  const auto& mat_index = cat.mat_index;
+  const auto& mat_names = cat.mat_names;
+  const auto& body_index = cat.body_index;
+  const auto& body_names = cat.body_names;
 
   readLine(top.required("line"), pb, mat_index, mat_names, body_index, body_names);
 
@@ -474,6 +486,127 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   if (msg.empty()) msg = pb.validate();
   if (!msg.empty()) throw ProblemError(msg);
   return pb;
+}
+
+/// A point position: [x, y, z] or {x, y, z} [m].
+void readPosition(const Item& it, double& x, double& y, double& z) {
+  if (it.node.IsSequence()) {
+    const std::vector<Item> v = listItems(it);
+    if (v.size() != 3) it.fail("needs 3 values [x, y, z], has " + std::to_string(v.size()));
+    x = readNumber(v[0]);
+    y = readNumber(v[1]);
+    z = readNumber(v[2]);
+    return;
+  }
+  const Map m(it, {"x", "y", "z"});
+  x = m.number("x");
+  y = m.number("y", 0.0, Range::Any);
+  z = m.number("z");
+}
+
+/// A system file (docs/problem_format.md, "Systems"): `points` and `lines` instead of `line`,
+/// `anchor` and `top`.
+SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
+  const Item rit{root, "", markOf(root, YAML::Mark::null_mark())};
+  if (!root.IsMap()) throw ProblemError("top level: expected a map" + lineSuffix(rit.mark));
+  const Map top(rit, {"name", "model", "environment", "materials", "bodies", "points", "lines", "solver"});
+  SystemProblem sp;
+  if (top.has("name")) sp.name = readString(top.at("name"));
+  if (top.has("model")) sp.formulation = readModel(top.at("model"));
+  if (presentAndNotNull(top, "environment")) readEnvironment(top.at("environment"), sp.environment, base_dir);
+  Catalogue cat;
+  readCatalogue(top, sp.materials, sp.bodies, cat);
+  if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), sp.static_options);
+
+  // Points, in file order.
+  std::map<std::string, std::size_t> point_index;
+  std::vector<std::string> point_names;
+  const Item pit = top.required("points");
+  if (!pit.node.IsMap()) pit.wrongType("a map name -> {type, position, ...}");
+  for (auto kv : pit.node) {
+    if (!kv.first.IsScalar()) throw ProblemError("points: names must be plain strings" + lineSuffix(kv.first.Mark()));
+    const std::string name = kv.first.Scalar();
+    if (point_index.count(name) || name == "free")
+      throw ProblemError("points." + name + (name == "free" ? ": \"free\" is reserved (a line's free end)"
+                                                             : ": duplicate point name") +
+                         lineSuffix(kv.first.Mark()));
+    const Item it{kv.second, "points." + name, markOf(kv.second, kv.first.Mark())};
+    const Map m(it, {"type", "position", "buoy", "body"});
+    SystemPoint pt;
+    pt.name = name;
+    const Item ti = m.required("type");
+    const std::string t = readString(ti);
+    if (t == "anchor") pt.type = SystemPoint::Type::Anchor;
+    else if (t == "fixed") pt.type = SystemPoint::Type::Fixed;
+    else if (t == "buoy") pt.type = SystemPoint::Type::Buoy;
+    else if (t == "body") pt.type = SystemPoint::Type::Body;
+    else throw ProblemError(ti.path + " = " + quoted(t) + ": unknown point type (known: anchor, fixed, buoy, body)" +
+                            lineSuffix(ti.mark));
+    if (m.has("position")) {
+      readPosition(m.at("position"), pt.x, pt.y, pt.z);
+      pt.position_given = true;
+    } else if (!pt.free()) {
+      m.required("position");  // an anchor or a fixed point needs its place
+    }
+    if (pt.type == SystemPoint::Type::Buoy) readBuoy(m.required("buoy"), pt.buoy);
+    else if (m.has("buoy")) m.at("buoy").fail("only for type: buoy");
+    if (pt.type == SystemPoint::Type::Body) pt.body = lookup(m.required("body"), cat.body_index, cat.body_names, "body");
+    else if (m.has("body")) m.at("body").fail("only for type: body");
+    point_index[name] = sp.points.size();
+    point_names.push_back(name);
+    sp.points.push_back(pt);
+  }
+
+  // Lines, each from its lower end (a point or `free`) to its upper end.
+  const std::vector<Item> lit = listItems(top.required("lines"));
+  if (lit.empty()) top.at("lines").fail("needs at least one line");
+  for (std::size_t i = 0; i < lit.size(); ++i) {
+    const Map m(lit[i], {"name", "from", "to", "segments", "end_body"});
+    SystemLine l;
+    l.name = m.has("name") ? readString(m.at("name")) : "line" + std::to_string(i);
+    const Item fi = m.required("from");
+    if (readString(fi) == "free") l.from = SystemLine::kFreeEnd;
+    else l.from = lookup(fi, point_index, point_names, "point");
+    l.to = lookup(m.required("to"), point_index, point_names, "point");
+    if (m.has("end_body")) l.end_body = lookup(m.at("end_body"), cat.body_index, cat.body_names, "body");
+    Problem tmp;
+    readLine(m.required("segments"), tmp, cat.mat_index, cat.mat_names, cat.body_index, cat.body_names);
+    l.segments = tmp.segments;
+    sp.lines.push_back(l);
+  }
+  std::string msg = sp.static_options.validate();
+  if (msg.empty()) msg = sp.validate();
+  if (!msg.empty()) throw ProblemError(msg);
+  return sp;
+}
+
+YAML::Node parseYaml(const std::string& yaml_text) {
+  YAML::Node root;
+  try {
+    const std::vector<YAML::Node> docs = YAML::LoadAll(yaml_text);
+    if (docs.size() > 1)
+      throw ProblemError("the text holds " + std::to_string(docs.size()) +
+                         " YAML documents (separated by ---); a problem file holds exactly one");
+    if (!docs.empty()) root = docs.front();
+  } catch (const YAML::Exception& e) {
+    std::string msg = "YAML syntax error";
+    if (!e.mark.is_null())
+      msg += " at line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1);
+    throw ProblemError(msg + ": " + e.msg);
+  }
+  return root;
+}
+
+std::string readFileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    const std::error_code ec(errno, std::generic_category());
+    throw ProblemError(path + ": cannot read file (" + ec.message() + ")");
+  }
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw ProblemError(path + ": read error");
+  return ss.str();
 }
 
 }  // namespace
@@ -522,6 +655,50 @@ Problem loadProblemFromFile(const std::string& path) {
       pb.name = stem;
     }
     return pb;
+  } catch (const ProblemError& e) {
+    throw ProblemError(path + ": " + e.what());
+  }
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics
+
+namespace mooring_dynamics {
+namespace core {
+
+bool isSystemText(const std::string& yaml_text) {
+  try {
+    const YAML::Node root = parseYaml(yaml_text);
+    return root.IsMap() && root["lines"] && root["points"];
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+bool isSystemFile(const std::string& path) {
+  try {
+    return isSystemText(readFileText(path));
+  } catch (const ProblemError&) {
+    return false;
+  }
+}
+
+SystemProblem loadSystemFromString(const std::string& yaml_text, const std::string& base_dir) {
+  const YAML::Node root = parseYaml(yaml_text);
+  if (!root.IsDefined() || root.IsNull()) throw ProblemError("system file is empty: expected points and lines");
+  try {
+    return parseSystem(root, base_dir);
+  } catch (const YAML::Exception& e) {
+    throw ProblemError(std::string("YAML error: ") + e.what());
+  }
+}
+
+SystemProblem loadSystemFromFile(const std::string& path) {
+  const std::string text = readFileText(path);
+  try {
+    SystemProblem sp = loadSystemFromString(text, std::filesystem::path(path).parent_path().string());
+    if (sp.name.empty()) sp.name = std::filesystem::path(path).stem().string();
+    return sp;
   } catch (const ProblemError& e) {
     throw ProblemError(path + ": " + e.what());
   }

@@ -205,3 +205,51 @@ TEST(System, TopologyErrorsNameTheProblem) {
   EXPECT_NE(s.validate().find("same point"), std::string::npos) << s.validate();
   EXPECT_THROW(solveSystemStatic(s), std::invalid_argument);
 }
+
+#include "mooring_dynamics/core/problem_io.hpp"
+
+TEST(System, ShippedThreeLegFileLoadsAndSolves) {
+  ASSERT_TRUE(isSystemFile("config/three_leg_buoy.yaml"));
+  EXPECT_FALSE(isSystemFile("config/chain_mooring.yaml"));
+  const SystemProblem s = loadSystemFromFile("config/three_leg_buoy.yaml");
+  ASSERT_EQ(s.lines.size(), 3u);
+  const SystemStaticResult r = solveSystemStatic(s);
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  // Current toward +x and wind toward +x+y push the buoy east and a little north.
+  EXPECT_GT(r.points[0].x, 0.0);
+  EXPECT_GT(r.points[0].y, 0.0);
+  EXPECT_LT(r.points[0].residual, 1e-3);
+}
+
+TEST(System, FileErrorsNameTheKey) {
+  const std::string good = R"(model: 3d
+environment: {depth: 100}
+materials:
+  chain: {EA: 5.0e8, EI: 10, GJ: 1, mass: 40, added_mass: 5, wet_weight: 300, diameter: 0.08, cdn: 2.4, cdt: 1.15}
+points:
+  buoy: {type: buoy, buoy: {diameter: 4, mass: 5000}}
+  a: {type: anchor, position: [250, 0, -100]}
+lines:
+  - {name: leg, from: a, to: buoy, segments: [{material: chain, length: 300, spacing: 5}]}
+)";
+  EXPECT_NO_THROW(loadSystemFromString(good));
+  auto expectError = [](const std::string& text, const std::string& want) {
+    try {
+      loadSystemFromString(text);
+      ADD_FAILURE() << "loaded; expected an error with " << want;
+    } catch (const ProblemError& e) {
+      EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+    }
+  };
+  std::string t = good;
+  t.replace(t.find("to: buoy"), 8, "to: bouy");
+  expectError(t, "lines[0].to");
+  t = good;
+  t.replace(t.find("type: anchor"), 12, "type: sinker");
+  expectError(t, "points.a.type = \"sinker\"");
+  t = good;
+  t.replace(t.find(", position: [250, 0, -100]"), 26, "");
+  expectError(t, "points.a.position");
+  t = good + "  - {name: stray, from: a, to: a, segments: [{material: chain, length: 10}]}\n";
+  expectError(t, "same point");
+}

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/system.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -26,6 +27,14 @@ Problem loadProblemFromString(const std::string& yaml_text, const std::string& b
 /// Parse a problem from a file. Throws ProblemError (also when the file cannot be read). Files it
 /// names (a seabed `grid_file`) are relative to its directory.
 Problem loadProblemFromFile(const std::string& path);
+
+/// A system file holds `points` and `lines` (several lines joined at points: multi-leg and
+/// branched moorings, docs/problem_format.md "Systems") instead of `line`, `anchor` and `top`.
+bool isSystemText(const std::string& yaml_text);
+bool isSystemFile(const std::string& path);
+/// Parse a system; throws ProblemError naming the key, value and constraint.
+SystemProblem loadSystemFromString(const std::string& yaml_text, const std::string& base_dir = "");
+SystemProblem loadSystemFromFile(const std::string& path);
 
 }  // namespace core
 }  // namespace mooring_dynamics
