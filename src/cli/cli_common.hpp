@@ -89,6 +89,9 @@ bool writeFile(const fs::path& path, Writer writer, std::ostream& err) {
 int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err);      // cmd_static.cpp
 int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err);  // cmd_dynamic.cpp
 int runPlot(const ParsedArgs& args, std::ostream& out, std::ostream& err);        // cmd_plot.cpp
+/// `static` on a system file (points and lines), cmd_system.cpp.
+int runSystemStatic(const std::string& path, bool want_table, std::size_t stride, double spacing_scale,
+                    const std::string& out_dir, std::ostream& out, std::ostream& err);
 
 }  // namespace detail
 }  // namespace cli

@@ -220,6 +220,11 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
   const std::string out_dir = args.has("out") ? args.values.at("out") : std::string();
   if (args.has("out") && out_dir.empty()) throw UsageError("option '--out' needs a directory, got ''");
   if (args.has("scheme") && args.has("lambda-inf")) throw UsageError("give --scheme or --lambda-inf, not both");
+  if (core::isSystemFile(problem_path)) {
+    err << kProg << ": error: " << problem_path
+        << ": a system of several lines (points and lines) has statics only so far; run `cable_sim static` on it\n";
+    return kExitBadInput;
+  }
   double duration = 0.0, dt = 0.0, lambda_inf = 0.0;
   if (args.has("duration")) duration = parsePositiveDouble("duration", args.values.at("duration"));
   if (args.has("dt")) dt = parsePositiveDouble("dt", args.values.at("dt"));

@@ -37,6 +37,8 @@ int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
       args.has("spacing-scale") ? parsePositiveDouble("spacing-scale", args.values.at("spacing-scale")) : 1.0;
   const std::string out_dir = args.has("out") ? args.values.at("out") : std::string();
   if (args.has("out") && out_dir.empty()) throw UsageError("option '--out' needs a directory, got ''");
+  if (core::isSystemFile(problem_path))  // several lines joined at points
+    return runSystemStatic(problem_path, want_table, stride, spacing_scale, out_dir, out, err);
 
   // Load.
   core::Problem problem;

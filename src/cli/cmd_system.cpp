@@ -1,0 +1,132 @@
+// cable_sim static on a system file (points and lines: multi-leg and branched moorings).
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "cli_common.hpp"
+#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/result_io.hpp"
+#include "mooring_dynamics/core/system.hpp"
+
+namespace mooring_dynamics {
+namespace cli {
+namespace detail {
+
+namespace {
+
+const char* pointType(core::SystemPoint::Type t) {
+  switch (t) {
+    case core::SystemPoint::Type::Anchor: return "anchor";
+    case core::SystemPoint::Type::Fixed: return "fixed";
+    case core::SystemPoint::Type::Buoy: return "buoy";
+    case core::SystemPoint::Type::Body: return "body";
+  }
+  return "?";
+}
+
+std::string jsonText(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) o += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+  return o + "\"";
+}
+
+void writeSystemJson(std::ostream& f, const core::SystemProblem& s, const core::SystemStaticResult& r) {
+  f << "{\n  \"name\": " << jsonText(s.name) << ",\n  \"model\": \""
+    << (s.formulation == core::Formulation::ThreeD ? "3d" : "2d") << "\",\n";
+  f << "  \"summary\": {\"converged\": " << (r.summary.converged ? "true" : "false")
+    << ", \"iterations\": " << r.summary.iterations << ", \"force_residual\": " << csvNum(r.summary.error)
+    << ", \"message\": " << jsonText(r.summary.message) << "},\n";
+  f << "  \"points\": [\n";
+  for (std::size_t p = 0; p < r.points.size(); ++p) {
+    const auto& pt = r.points[p];
+    f << "    {\"name\": " << jsonText(pt.name) << ", \"type\": \"" << pointType(s.points[p].type)
+      << "\", \"position\": [" << csvNum(pt.x) << ", " << csvNum(pt.y) << ", " << csvNum(pt.z)
+      << "], \"line_force\": [" << csvNum(pt.fx) << ", " << csvNum(pt.fy) << ", " << csvNum(pt.fz)
+      << "], \"residual\": " << csvNum(pt.residual) << ", \"buoy_draft\": " << csvNum(pt.buoy_draft) << "}"
+      << (p + 1 < r.points.size() ? "," : "") << "\n";
+  }
+  f << "  ],\n  \"lines\": [\n";
+  for (std::size_t i = 0; i < r.lines.size(); ++i) {
+    const auto& l = r.lines[i];
+    double tmin = 0.0;
+    for (std::size_t j = 0; j < l.nodes.size(); ++j) tmin = j ? std::min(tmin, l.nodes[j].tension) : l.nodes[j].tension;
+    f << "    {\"name\": " << jsonText(s.lines[i].name) << ", \"nodes\": " << l.nodes.size()
+      << ", \"top_tension\": " << csvNum(l.topTension()) << ", \"min_tension\": " << csvNum(tmin)
+      << ", \"top_force\": [" << csvNum(l.top_force_x) << ", " << csvNum(l.top_force_y) << ", "
+      << csvNum(l.top_force_z) << "], \"lower_end_force\": [" << csvNum(l.anchor_force_x) << ", "
+      << csvNum(l.anchor_force_y) << ", " << csvNum(l.anchor_force_z) << "], \"csv\": \"static_nodes_"
+      << s.lines[i].name << ".csv\"}" << (i + 1 < r.lines.size() ? "," : "") << "\n";
+  }
+  f << "  ],\n  \"units\": {\"position\": \"m\", \"force\": \"N\", \"tension\": \"N\"}\n}\n";
+}
+
+}  // namespace
+
+int runSystemStatic(const std::string& path, bool want_table, std::size_t stride, double spacing_scale,
+                    const std::string& out_dir, std::ostream& out, std::ostream& err) {
+  core::SystemProblem s;
+  try {
+    s = core::loadSystemFromFile(path);
+  } catch (const std::exception& e) {
+    err << kProg << ": error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  for (auto& l : s.lines)
+    for (auto& g : l.segments) g.spacing *= spacing_scale;
+  core::SystemStaticResult r;
+  try {
+    r = core::solveSystemStatic(s);
+  } catch (const std::invalid_argument& e) {
+    err << kProg << ": error: " << path << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  out << s.name << ": system of " << s.lines.size() << " lines and " << s.points.size() << " points, "
+      << (r.summary.converged ? "converged" : "NOT converged") << " - " << r.summary.message << "\n";
+  out << "  points (position [m]; pull of the lines [N]):\n";
+  for (std::size_t p = 0; p < r.points.size(); ++p) {
+    const auto& pt = r.points[p];
+    out << "    " << pt.name << " (" << pointType(s.points[p].type) << ")  x = " << fmtNum("%.2f", pt.x)
+        << ", y = " << fmtNum("%.2f", pt.y) << ", z = " << fmtNum("%.2f", pt.z) << "   pull ("
+        << fmtNum("%.1f", pt.fx) << ", " << fmtNum("%.1f", pt.fy) << ", " << fmtNum("%.1f", pt.fz) << ")";
+    if (s.points[p].type == core::SystemPoint::Type::Buoy) out << "   draft " << fmtNum("%.3f", pt.buoy_draft) << " m";
+    out << "\n";
+  }
+  out << "  lines (tension [N]):\n";
+  for (std::size_t i = 0; i < r.lines.size(); ++i) {
+    const auto& l = r.lines[i];
+    double tmin = l.nodes.empty() ? 0.0 : l.nodes.front().tension;
+    for (const auto& n : l.nodes) tmin = std::min(tmin, n.tension);
+    out << "    " << s.lines[i].name << ": " << l.nodes.size() << " nodes, top " << fmtNum("%.1f", l.topTension())
+        << ", lower end " << fmtNum("%.1f", l.nodes.empty() ? 0.0 : l.nodes.front().tension) << ", min "
+        << fmtNum("%.1f", tmin) << "\n";
+    if (want_table) out << core::staticTableText(l, stride, s.formulation);
+  }
+  if (!out_dir.empty()) {
+    const fs::path dir(out_dir);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir, ec)) {
+      err << kProg << ": error: cannot create output directory '" << out_dir << "'\n";
+      return kExitIo;
+    }
+    if (!writeFile(dir / "system.json", [&](std::ostream& f) { writeSystemJson(f, s, r); }, err)) return kExitIo;
+    for (std::size_t i = 0; i < r.lines.size(); ++i)
+      if (!writeFile(dir / ("static_nodes_" + s.lines[i].name + ".csv"),
+                     [&](std::ostream& f) { core::writeStaticCsv(f, r.lines[i], s.formulation); }, err))
+        return kExitIo;
+    out << "wrote " << (dir / "system.json").string() << " and " << r.lines.size() << " static_nodes_<line>.csv\n";
+  }
+  if (!r.summary.converged) {
+    err << kProg << ": error: the system did not converge: " << r.summary.message << "\n";
+    return kExitNotConverged;
+  }
+  return kExitOk;
+}
+
+}  // namespace detail
+}  // namespace cli
+}  // namespace mooring_dynamics
