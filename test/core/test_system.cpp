@@ -253,3 +253,17 @@ lines:
   t = good + "  - {name: stray, from: a, to: a, segments: [{material: chain, length: 10}]}\n";
   expectError(t, "same point");
 }
+
+TEST(System, ShippedBranchedArraySolvesWithItsFreeTail) {
+  const SystemProblem s = loadSystemFromFile("config/branched_array.yaml");
+  const SystemStaticResult r = solveSystemStatic(s);
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  // The tail hangs from the float with the 400 N sinker at its free end: tension 400 N there and
+  // 400 N + 20 m x 5 N/m at the float, less the slight tilt of the current's drag.
+  const StaticResult& tail = r.lines[3];
+  // (0.1 N: the sinker's 3 N of drag in the current and the tail's bending share the end force.)
+  EXPECT_NEAR(tail.nodes.front().tension, 400.0, 0.1);
+  EXPECT_NEAR(tail.topTension(), 500.0, 0.01 * 500.0);
+  EXPECT_NEAR(tail.nodes.back().z, r.points[2].z, 1e-6);
+  EXPECT_LT(r.points[2].residual, 0.01);
+}
