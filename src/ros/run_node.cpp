@@ -7,6 +7,7 @@
 #include "mooring_dynamics/core/problem_io.hpp"
 #include "mooring_dynamics/ros/lockstep_node.hpp"
 #include "mooring_dynamics/ros/static_node.hpp"
+#include "mooring_dynamics/ros/system_node.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {
@@ -16,8 +17,18 @@ int runNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
   pnh.param<std::string>("mode", mode, "static");
   std::unique_ptr<StaticNode> static_node;
   std::unique_ptr<LockstepNode> lockstep_node;
+  std::unique_ptr<SystemStaticNode> system_node;
   try {
-    if (mode == "static") {
+    if (paramsNameSystemFile(pnh)) {  // several lines joined at points: statics only
+      if (mode != "static") {
+        ROS_FATAL("mooring_dynamics: parameter %s = \"%s\": a system of lines (points and lines) runs in "
+                  "static mode only so far",
+                  pnh.resolveName("mode").c_str(), mode.c_str());
+        ros::shutdown();
+        return 1;
+      }
+      system_node = std::make_unique<SystemStaticNode>(nh, pnh);
+    } else if (mode == "static") {
       static_node = std::make_unique<StaticNode>(nh, pnh);
     } else if (mode == "dynamic") {
       lockstep_node = std::make_unique<LockstepNode>(nh, pnh);
@@ -37,6 +48,7 @@ int runNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
     return 1;
   }
   if (static_node) static_node->start();
+  if (system_node) system_node->start();
   ros::spin();
   return 0;
 }

@@ -1,0 +1,82 @@
+#include "mooring_dynamics/ros/system_node.hpp"
+
+#include <stdexcept>
+
+#include <geometry_msgs/WrenchStamped.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "mooring_dynamics/CableState.h"
+#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/ros/converter.hpp"
+#include "mooring_dynamics/ros/markers.hpp"
+
+namespace mooring_dynamics {
+namespace ros_bridge {
+
+bool paramsNameSystemFile(const ros::NodeHandle& pnh) {
+  std::string file;
+  return pnh.getParam("problem_file", file) && !file.empty() && core::isSystemFile(file);
+}
+
+SystemStaticNode::SystemStaticNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh), pnh_(pnh) {
+  std::string file;
+  if (!pnh_.getParam("problem_file", file) || file.empty())
+    throw std::runtime_error("parameter " + pnh_.resolveName("problem_file") + ": a system file is needed");
+  system_ = core::loadSystemFromFile(file);  // throws core::ProblemError naming the key
+  pnh_.param<std::string>("frame_id", frame_id_, "world");
+  if (frame_id_.empty()) throw std::runtime_error("parameter " + pnh_.resolveName("frame_id") + ": must not be empty");
+  pnh_.param("marker_scale", marker_scale_, 1.0);
+  if (!(marker_scale_ > 0.0))
+    throw std::runtime_error("parameter " + pnh_.resolveName("marker_scale") + " = " + formatNumber(marker_scale_) +
+                             ": must be > 0");
+  for (const auto& l : system_.lines)
+    line_pubs_.push_back(pnh_.advertise<CableState>("lines/" + l.name + "/cable_state", 1, /*latch=*/true));
+  for (const auto& p : system_.points)
+    point_pubs_.push_back(pnh_.advertise<geometry_msgs::WrenchStamped>("points/" + p.name + "/wrench", 1, true));
+  marker_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
+  ROS_INFO("mooring_dynamics: system '%s' from %s: %zu lines, %zu points", system_.name.c_str(), file.c_str(),
+           system_.lines.size(), system_.points.size());
+}
+
+bool SystemStaticNode::start() {
+  core::SystemStaticResult r;
+  try {
+    r = core::solveSystemStatic(system_);
+  } catch (const std::exception& e) {
+    ROS_ERROR("mooring_dynamics: system statics: %s", e.what());
+    return false;
+  }
+  if (!r.summary.converged) {
+    ROS_ERROR("mooring_dynamics: system statics did not converge: %s (nothing published)", r.summary.message.c_str());
+    return false;
+  }
+  const ros::Time stamp = ros::Time::now();
+  visualization_msgs::MarkerArray all;
+  for (std::size_t i = 0; i < r.lines.size(); ++i) {
+    const std::string& name = system_.lines[i].name;
+    const CableState state = toCableState(r.lines[i], name, frame_id_, stamp);
+    line_pubs_[i].publish(state);
+    // The line's own markers, in a namespace of its own so that the ids of the lines do not clash.
+    core::Problem p = system_.lineProblem(i, std::vector<double>(3 * system_.points.size(), 0.0));
+    visualization_msgs::MarkerArray m = makeMarkers(state, system_.environment, markerOptionsFor(p, marker_scale_));
+    for (auto& mk : m.markers) {
+      mk.ns = name + "/" + mk.ns;
+      all.markers.push_back(mk);
+    }
+  }
+  marker_pub_.publish(all);
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    geometry_msgs::WrenchStamped w;
+    w.header.stamp = stamp;
+    w.header.frame_id = frame_id_;
+    w.wrench.force.x = r.points[k].fx;
+    w.wrench.force.y = r.points[k].fy;
+    w.wrench.force.z = r.points[k].fz;
+    point_pubs_[k].publish(w);
+  }
+  ROS_INFO("mooring_dynamics: system statics: %s", r.summary.message.c_str());
+  return true;
+}
+
+}  // namespace ros_bridge
+}  // namespace mooring_dynamics
