@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "mooring_dynamics/core/adaptive_mesh.hpp"
+#include "mooring_dynamics/core/dynamic_run.hpp"
 #include "mooring_dynamics/core/dynamic_interval.hpp"
 #include "mooring_dynamics/core/equations2d_dynamic.hpp"
 #include "mooring_dynamics/core/mesh.hpp"
@@ -467,46 +468,14 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   return true;
 }
 
-/// Section 4.3: on failure cut the step by 10 and take ten sub-steps, recursively.
-bool advanceStep(DynamicSolver2D::Impl& im, double dt, int level, StepReport& rep) {
-  if (tryStep(im, dt, rep)) return true;
-  if (level >= im.opt.max_cut_levels) {
-    rep.message = "adaptive time stepping exhausted at " + std::to_string(level) +
-                  " cuts (dt = " + std::to_string(dt) + " s): " + rep.message;
-    return false;
-  }
-  ++rep.cuts;
-  ++im.totals.cuts;
-  const double t0 = im.t;
-  for (int k = 1; k <= 10; ++k) {
-    const double target = t0 + dt * k / 10.0;
-    if (!advanceStep(im, target - im.t, level + 1, rep)) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 StepReport DynamicSolver2D::advanceTo(double t_end) {
   Impl& im = *impl_;
-  StepReport rep;
-  const double base = im.opt.dt;
-  const double eps = 1e-9 * base;
-  if (t_end < im.t - eps) {
-    rep.ok = false;
-    rep.message = "advanceTo: t_end = " + std::to_string(t_end) + " s is before the current time " +
-                  std::to_string(im.t) + " s";
-    return rep;
-  }
-  while (im.t < t_end - eps) {
-    const double dt = std::min(base, t_end - im.t);
-    if (!advanceStep(im, dt, 0, rep)) {
-      rep.ok = false;
-      return rep;
-    }
-  }
-  im.t = std::max(im.t, t_end);
-  return rep;
+  // Base steps with the adaptive cutting of section 4.3 (dynamic_run.hpp).
+  return advanceWithCuts(
+      im.t, im.opt.dt, im.opt.max_cut_levels, t_end, [&im](double dt, StepReport& rep) { return tryStep(im, dt, rep); },
+      [&im]() { ++im.totals.cuts; });
 }
 
 double DynamicSolver2D::jacobianFiniteDifferenceError(double dt) const {
@@ -519,69 +488,7 @@ double DynamicSolver2D::jacobianFiniteDifferenceError(double dt) const {
 // ------------------------------------------------------------------------------------------------
 
 DynamicSeries runDynamic(const Problem& problem, const std::function<void(double, double)>& progress) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  DynamicSeries out;
-  const DynamicOptions& opt = problem.dynamics;
-  if (!(opt.duration > 0.0)) throw std::invalid_argument("dynamics.duration = " + std::to_string(opt.duration) +
-                                                         ": must be > 0 for a dynamic run");
-  DynamicSolver2D solver(problem);
-  out.initial_static = solver.initialStatic();
-  const std::vector<double> s = solver.nodeArclengths();
-  std::vector<std::size_t> rec;
-  for (double want : opt.record_s) {
-    std::size_t best = 0;
-    for (std::size_t j = 1; j < s.size(); ++j)
-      if (std::abs(s[j] - want) < std::abs(s[best] - want)) best = j;
-    rec.push_back(best);
-    out.record_s.push_back(s[best]);
-  }
-  out.node_tension.assign(rec.size(), {});
-  out.node_x.assign(rec.size(), {});
-  out.node_z.assign(rec.size(), {});
-
-  const double dout = opt.output_interval > 0.0 ? opt.output_interval : opt.dt;
-  const long samples = static_cast<long>(std::floor(opt.duration / dout + 1e-9));
-  const long snap_every = opt.snapshot_interval > 0.0
-                              ? std::max(1L, static_cast<long>(std::llround(opt.snapshot_interval / dout)))
-                              : 0;
-  auto record = [&](double t, long k) {
-    const StaticResult r = solver.snapshot();
-    out.t.push_back(t);
-    out.top_tension.push_back(r.nodes.back().tension);
-    out.anchor_tension.push_back(r.nodes.front().tension);
-    out.top_x.push_back(r.nodes.back().x);
-    out.top_z.push_back(r.nodes.back().z);
-    for (std::size_t i = 0; i < rec.size(); ++i) {
-      out.node_tension[i].push_back(r.nodes[rec[i]].tension);
-      out.node_x[i].push_back(r.nodes[rec[i]].x);
-      out.node_z[i].push_back(r.nodes[rec[i]].z);
-    }
-    if (snap_every > 0 && k % snap_every == 0) {
-      out.snapshots.push_back(r);
-      out.snapshot_t.push_back(t);
-    }
-  };
-  record(0.0, 0);
-  out.completed = true;
-  // Output grid k * dout, plus the end time when the duration is not a whole multiple of it.
-  const bool partial_end = opt.duration - samples * dout > 1e-9 * dout;
-  for (long k = 1; k <= samples + (partial_end ? 1 : 0); ++k) {
-    const double t = k <= samples ? k * dout : opt.duration;
-    const StepReport rep = solver.advanceTo(t);
-    if (!rep.ok) {
-      out.completed = false;
-      out.message = rep.message;
-      break;
-    }
-    record(t, k);
-    if (progress) progress(t, opt.duration);
-  }
-  const auto tot = solver.totals();
-  out.steps = tot.steps;
-  out.cuts = tot.cuts;
-  out.newton_iterations = tot.newton_iterations;
-  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return out;
+  return runDynamicWith<DynamicSolver2D>(problem, progress);
 }
 
 }  // namespace core

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mooring_dynamics/core/ad_rows.hpp"
 #include "mooring_dynamics/core/adaptive_mesh.hpp"
 #include "mooring_dynamics/core/dynamic_run.hpp"
 #include "mooring_dynamics/core/equations3d.hpp"
@@ -32,43 +33,6 @@ constexpr int kMaxEndRows = 10;
 const char* const kVarNames[N] = {"eps", "S2", "S3", "u1", "u2", "u3", "Omega1", "Omega2",
                                   "Omega3", "q0", "q1", "q2", "q3", "x", "y", "z"};
 
-/// Rows into R (and, for AD scalars, their derivatives into J at column col0 onward).
-inline void scatter(const double* r, int rows, int row0, int, int, Eigen::VectorXd& R, BandedMatrix*) {
-  for (int q = 0; q < rows; ++q) R[row0 + q] = r[q];
-}
-
-template <class AD>
-void scatter(const AD* r, int rows, int row0, int col0, int cols, Eigen::VectorXd& R, BandedMatrix* J) {
-  for (int q = 0; q < rows; ++q) {
-    R[row0 + q] = r[q].value();
-    if (!J || r[q].derivatives().size() == 0) continue;
-    for (int k = 0; k < cols; ++k) {
-      const double d = r[q].derivatives()[k];
-      if (d != 0.0) J->at(row0 + q, col0 + k) = d;
-    }
-  }
-}
-
-template <class AD>
-AD constant(double v) {
-  AD a(v);
-  a.derivatives().setZero();
-  return a;
-}
-template <>
-double constant<double>(double v) {
-  return v;
-}
-
-/// Unknown k of `size` (an AD variable), or its plain value for double.
-template <class S>
-S variable(double v, int size, int k) {
-  return S(v, size, k);
-}
-template <>
-double variable<double>(double v, int, int) {
-  return v;
-}
 }  // namespace
 
 // ------------------------------------------------------------------------------------------------

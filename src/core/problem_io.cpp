@@ -614,19 +614,7 @@ std::string readFileText(const std::string& path) {
 Problem loadProblemFromString(const std::string& yaml_text) { return loadProblemFromString(yaml_text, ""); }
 
 Problem loadProblemFromString(const std::string& yaml_text, const std::string& base_dir) {
-  YAML::Node root;
-  try {
-    const std::vector<YAML::Node> docs = YAML::LoadAll(yaml_text);
-    if (docs.size() > 1)
-      throw ProblemError("the text holds " + std::to_string(docs.size()) +
-                         " YAML documents (separated by ---); a problem file holds exactly one");
-    if (!docs.empty()) root = docs.front();
-  } catch (const YAML::Exception& e) {
-    std::string msg = "YAML syntax error";
-    if (!e.mark.is_null())
-      msg += " at line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1);
-    throw ProblemError(msg + ": " + e.msg);
-  }
+  const YAML::Node root = parseYaml(yaml_text);
   try {
     return parse(root, base_dir);
   } catch (const YAML::Exception& e) {  // should not happen: all access is checked above
@@ -635,18 +623,11 @@ Problem loadProblemFromString(const std::string& yaml_text, const std::string& b
 }
 
 Problem loadProblemFromFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const std::error_code ec(errno, std::generic_category());
-    throw ProblemError(path + ": cannot read file (" + ec.message() + ")");
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw ProblemError(path + ": read error");
+  const std::string text = readFileText(path);
   try {
     // Files named in the problem (seabed grid) are relative to its directory.
     const std::string dir = std::filesystem::path(path).parent_path().string();
-    Problem pb = loadProblemFromString(ss.str(), dir);
+    Problem pb = loadProblemFromString(text, dir);
     if (pb.name.empty()) {
       // Default name: the file name without directory and extension.
       std::string stem = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);

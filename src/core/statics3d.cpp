@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mooring_dynamics/core/ad_rows.hpp"
 #include "mooring_dynamics/core/equations3d.hpp"
 #include "mooring_dynamics/core/initial_guess.hpp"
 #include "mooring_dynamics/core/static_system.hpp"
@@ -33,18 +34,6 @@ Water currentAt(const Environment& env, double z) {
   return w;
 }
 
-/// Copy AD residual rows into R and the Jacobian block whose first column is col0.
-template <class AD>
-void scatter(const AD* r, int rows, int row0, int col0, int cols, Eigen::VectorXd& R, BandedMatrix* J) {
-  for (int q = 0; q < rows; ++q) {
-    R[row0 + q] = r[q].value();
-    if (!J || r[q].derivatives().size() == 0) continue;
-    for (int k = 0; k < cols; ++k) {
-      const double d = r[q].derivatives()[k];
-      if (d != 0.0) J->at(row0 + q, col0 + k) = d;
-    }
-  }
-}
 }  // namespace
 
 // --- StaticSystem3D ------------------------------------------------------------------------------

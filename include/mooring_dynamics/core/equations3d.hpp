@@ -319,29 +319,30 @@ void topBodyForces(const Problem& p, const Material& mn, const S* Yn, const Wate
   for (int i = 0; i < 3; ++i) R[i] = F[i] - P[i] - extra[i];
 }
 
-/// Inertia of the top body: plus its mass and added mass times the top node's acceleration [N]
-/// (the rows of topBodyForces: F_n - P + M a = 0).
+/// A point body's mass and added mass times the global acceleration of the node it sits at,
+/// times `sign` [N]: +1 for the top body's rows (F_n - P + M a = 0), -1 for the free end's
+/// (F_0 + P - M a = 0).
 template <class S>
-void topBodyInertia(const Problem& p, const S* Yn, const S* Ydn, S* R) {
-  const double mass = p.bodies[p.top.body].mass + p.bodies[p.top.body].added_mass;
+void pointBodyInertia(double mass, double sign, const S* Yn, const S* Ydn, S* R) {
   S Rm[9], a[3], ag[3];
   quat::matrix(Yn + Q0, Rm);
   acceleration(Yn, Ydn, a);
   quat::toGlobal(Rm, a, ag);
-  for (int i = 0; i < 3; ++i) R[i] = mass * ag[i];
+  for (int i = 0; i < 3; ++i) R[i] = sign * mass * ag[i];
 }
 
-/// Inertia of the end body (rows of freeEndForces): minus its mass and added mass times node 0's
-/// acceleration [N].
+/// Inertia of the top body (rows of topBodyForces) [N].
+template <class S>
+void topBodyInertia(const Problem& p, const S* Yn, const S* Ydn, S* R) {
+  pointBodyInertia(p.bodies[p.top.body].mass + p.bodies[p.top.body].added_mass, 1.0, Yn, Ydn, R);
+}
+
+/// Inertia of the end body (rows of freeEndForces) [N].
 template <class S>
 void freeEndInertia(const Problem& p, const S* Y0, const S* Yd0, S* R) {
   const double mass =
       p.end_body == Problem::kNoBody ? 0.0 : p.bodies[p.end_body].mass + p.bodies[p.end_body].added_mass;
-  S Rm[9], a[3], ag[3];
-  quat::matrix(Y0 + Q0, Rm);
-  acceleration(Y0, Yd0, a);
-  quat::toGlobal(Rm, a, ag);
-  for (int i = 0; i < 3; ++i) R[i] = -mass * ag[i];
+  pointBodyInertia(mass, -1.0, Y0, Yd0, R);
 }
 
 /// Junction (pin joint, equations2d.hpp) between nodes a and b at the same arclength: spatial
