@@ -56,6 +56,7 @@ struct DriftSolver {
   double q_ref[4] = {1.0, 0.0, 0.0, 0.0};
   bool have_ref = false;
   int inner_iterations = 0;
+  int solves = 0;
 
   /// The towed-line guess (force marched up from the free end) in the drifting frame, its top
   /// at the buoy's still-water keel.
@@ -82,6 +83,7 @@ struct DriftSolver {
       StaticSystem3D system(solved, mesh, q_ref);
       s = solveNewton(system, Y, newton);
       inner_iterations += s.iterations;
+      ++solves;
       if (s.converged || !warm || attempt == 1) break;
       Y0 = freshGuess(solved);
     }
@@ -192,8 +194,9 @@ StaticState3D solveDriftStatic3D(const Problem& problem, const Mesh& mesh, const
         << std::hypot(G[0], G[1]) << " N)";
     out.result.summary.converged = false;
   } else {
-    msg << inner.message << "; steady drift " << velocityText(V) << " after " << outer
-        << " outer iterations (horizontal force balance " << std::hypot(G[0], G[1]) << " N)";
+    msg << "steady drift " << velocityText(V) << " after " << outer << " outer iterations, " << ds.solves
+        << " static solves (horizontal force balance " << std::hypot(G[0], G[1]) << " N; last solve: " << inner.message
+        << ")";
   }
   out.result.summary.message = msg.str();
   return out;

@@ -446,3 +446,19 @@ TEST(DriftingInput, WavesDoNotBreakADrifterRun) {
   // It keeps drifting downwind and downstream.
   EXPECT_GT(r.top_x.back(), 0.5 * r.initial_static.drift_vx * 40.0);
 }
+
+TEST(DriftingDynamics, StepJacobianMatchesFiniteDifferences) {
+  // The drifter's top rows (buoy balance with relative drag and wind, kinematics) in AutoDiff
+  // against central differences, from the steady drift and after a push (velocities off V_d).
+  Problem p = driftRun(0.5, 10.0);
+  uniformCurrent(p, 0.3, 0.0);
+  p.environment.wind_speed = 8.0;
+  p.environment.wind_direction = 0.25 * kPi;
+  p.dynamics.top_motion.type = TopMotion::Type::ForceTable;
+  p.dynamics.top_motion.table = {{0.0, 0.0, 0.0, 0.0}, {1.0, 0.0, 300.0, 50.0}, {2.0, 0.0, 0.0, 0.0}};
+  DynamicSolver3D s(p);
+  constexpr double kJacobianTol = 1e-5;  // relative, as the other step-Jacobian checks
+  EXPECT_LT(s.jacobianFiniteDifferenceError(0.5), kJacobianTol);
+  ASSERT_TRUE(s.advanceTo(2.0).ok);
+  EXPECT_LT(s.jacobianFiniteDifferenceError(0.5), kJacobianTol);
+}
