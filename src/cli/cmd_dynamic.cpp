@@ -172,8 +172,13 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
     << "  \"samples\": " << r.t.size() << ",\n"
     << "  \"top_tension\": {\"mean\": " << jsonNum(g.top.mean) << ", \"std\": " << jsonNum(g.top.std)
     << ", \"min\": " << jsonNum(g.top.min) << ", \"max\": " << jsonNum(g.top.max) << "},\n"
-    << "  \"static_top_tension\": " << jsonNum(g.static_top) << ",\n"
-    << "  \"steps\": " << r.steps << ",\n"
+    << "  \"static_top_tension\": " << jsonNum(g.static_top) << ",\n";
+  if (r.initial_static.drifting && g.simulated > 0.0)
+    f << "  \"static_drift_velocity\": {\"x\": " << jsonNum(r.initial_static.drift_vx)
+      << ", \"y\": " << jsonNum(r.initial_static.drift_vy) << "},\n"
+      << "  \"mean_drift_velocity\": {\"x\": " << jsonNum((r.top_x.back() - r.top_x.front()) / g.simulated)
+      << ", \"y\": " << jsonNum((r.top_y.back() - r.top_y.front()) / g.simulated) << "},\n";
+  f << "  \"steps\": " << r.steps << ",\n"
     << "  \"cuts\": " << r.cuts << ",\n"
     << "  \"newton_iterations\": " << r.newton_iterations << ",\n"
     << "  \"jacobians\": " << r.jacobians << ",\n"
@@ -200,6 +205,11 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
   o << "  top tension    mean " << fmtNum("%.1f", g.top.mean) << " N, std " << fmtNum("%.1f", g.top.std)
     << " N, min " << fmtNum("%.1f", g.top.min) << " N, max " << fmtNum("%.1f", g.top.max) << " N\n";
   o << "  static top     " << fmtNum("%.1f", g.static_top) << " N\n";
+  if (r.initial_static.drifting && g.simulated > 0.0)
+    o << "  drift          static x = " << fmtNum("%.4f", r.initial_static.drift_vx) << ", y = "
+      << fmtNum("%.4f", r.initial_static.drift_vy) << " m/s; run mean x = "
+      << fmtNum("%.4f", (r.top_x.back() - r.top_x.front()) / g.simulated) << ", y = "
+      << fmtNum("%.4f", (r.top_y.back() - r.top_y.front()) / g.simulated) << " m/s\n";
   o << "  solver         " << r.steps << " steps, " << r.cuts << " cuts, " << r.newton_iterations
     << " Newton iterations";
   if (r.jacobians > 0 && r.jacobians != r.newton_iterations) o << " (" << r.jacobians << " Jacobians)";

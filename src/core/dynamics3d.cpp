@@ -7,8 +7,10 @@
 
 #include "mooring_dynamics/core/ad_rows.hpp"
 #include "mooring_dynamics/core/adaptive_mesh.hpp"
+#include "mooring_dynamics/core/drifting.hpp"
 #include "mooring_dynamics/core/dynamic_run.hpp"
 #include "mooring_dynamics/core/equations3d.hpp"
+#include "mooring_dynamics/core/equations3d_drifter.hpp"
 #include "mooring_dynamics/core/mesh.hpp"
 #include "mooring_dynamics/core/newton.hpp"
 #include "mooring_dynamics/core/statics3d.hpp"
@@ -24,7 +26,8 @@ using AD32 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
 using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
 // Rows at the ends: anchored, 10 at the anchor and 6 at the top; with a free lower end (towing),
 // 7 at the end (the body's force balance replaces rest and position) and 9 at the top (the tow
-// point's position as well as its velocity).
+// point's position as well as its velocity). A drifter (free end under a surface buoy) has the
+// same 7 and 9: at the top the buoy's force balance and the kinematics dx_n/dt = V_n.
 constexpr int kAnchorRows = 10;
 constexpr int kTopRows = 6;
 constexpr int kFreeEndRows = 7;
@@ -51,7 +54,7 @@ struct DynamicSolver3D::Impl {
   std::vector<Water> water;     ///< water velocity at each node at time t
   Eigen::VectorXd S;            ///< spatial rows 0-5 of each interval at time t
   double S_end[3] = {0.0, 0.0, 0.0};  ///< free lower end: spatial part of the body balance at time t
-  double S_top[3] = {0.0, 0.0, 0.0};  ///< subsurface top body: spatial part of its balance at time t
+  double S_top[3] = {0.0, 0.0, 0.0};  ///< subsurface top body or drifting buoy: spatial part of its balance at time t
   double chi[N];
   Totals totals;
   BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
@@ -112,6 +115,12 @@ struct DynamicSolver3D::Impl {
       const int n = nodes();
       topBodyForces(problem, mat(n - 1), y.data() + N * (n - 1), w[static_cast<std::size_t>(n - 1)], extra, S_top);
     }
+    if (isDrifter(problem)) {
+      const TopState in = top(time);
+      const double extra[3] = {in.force ? in.fx : 0.0, in.force ? in.fy : 0.0, in.force ? in.fz : 0.0};
+      driftBuoyForces(problem.environment, problem.top.buoy, mat(nodes() - 1), y.data() + N * (nodes() - 1), extra,
+                      S_top);
+    }
   }
 };
 
@@ -123,7 +132,7 @@ class DynamicStepSystem3D : public NewtonSystem {
  public:
   DynamicStepSystem3D(const DynamicSolver3D::Impl& im, double t_new, double dt, const TopState& top)
       : im_(im), t_(t_new), dt_(dt), top_(top),
-        towed_(im.problem.lower_end == Problem::LowerEnd::Free),
+        towed_(im.problem.lower_end == Problem::LowerEnd::Free), drifter_(isDrifter(im.problem)),
         end_rows_(towed_ ? kFreeEndRows : kAnchorRows), top_rows_(towed_ ? kTowTopRows : kTopRows) {}
 
   int size() const override { return N * im_.nodes(); }
@@ -257,7 +266,29 @@ class DynamicStepSystem3D : public NewtonSystem {
     r[0] = y[O1];
     r[1] = y[O2];
     r[2] = y[O3];
-    if (im_.problem.top.type == TopBoundary::Type::Body) {
+    if (drifter_) {
+      // Drifting buoy: its force balance with inertia, weighted in time like the subsurface
+      // body's rows; then the top node's kinematics dx_n/dt = V_n in generalized-alpha form (the
+      // weighted rate of x_n against the alpha_k-weighted global velocity), which with both ends
+      // free is all that fixes where the line is.
+      S16 yd[N], ydw[N], yp[N], sp[3], in1[3], in0[3], V1[3], V0[3];
+      for (int k = 0; k < N; ++k) {
+        yd[k] = c1 * (y[k] - Yp[top + k]) - c0 * Ydp[top + k];
+        ydw[k] = (1.0 - am) * yd[k] + am * Ydp[top + k];
+        yp[k] = constant<S16>(Yp[top + k]);
+      }
+      const double extra[3] = {top_.force ? top_.fx : 0.0, top_.force ? top_.fy : 0.0, top_.force ? top_.fz : 0.0};
+      const SurfaceBuoy& b = im_.problem.top.buoy;
+      driftBuoyForces(env, b, im_.mat(n - 1), y, extra, sp);
+      driftBuoyInertia(b, y, ydw, in1);
+      driftBuoyInertia(b, yp, ydw, in0);
+      globalVelocity(y, V1);
+      globalVelocity(yp, V0);
+      for (int i = 0; i < 3; ++i) {
+        r[3 + i] = (1.0 - ak) * (in1[i] + sp[i]) + ak * (in0[i] + im_.S_top[i]);
+        r[6 + i] = ydw[X + i] - ((1.0 - ak) * V1[i] + ak * V0[i]);
+      }
+    } else if (im_.problem.top.type == TopBoundary::Type::Body) {
       // Subsurface buoy: its force balance with inertia, weighted in time like the junction
       // rows; a force table adds an external force on the body.
       S16 yd[N], yp[N], sp[3], in1[3], in0[3];
@@ -300,6 +331,7 @@ class DynamicStepSystem3D : public NewtonSystem {
   double t_, dt_;
   TopState top_;
   bool towed_;
+  bool drifter_;  ///< free end under a surface buoy: the buoy's balance and kinematics at the top
   int end_rows_, top_rows_;
   mutable std::vector<Water> water_;
 };
@@ -317,7 +349,10 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   // A towed line starts from the steady tow at the tow point's initial velocity (section 7.1:
   // "steady tow, then the manoeuvre"): statics in the frame moving with it, then every node given
   // that velocity, which is a steady state of the dynamic equations.
-  const bool towed = problem.lower_end == Problem::LowerEnd::Free;
+  // A drifter starts from its steady drift: the statics find the drift velocity V_d, and every
+  // node moves at it.
+  const bool drifter = isDrifter(problem);
+  const bool towed = problem.lower_end == Problem::LowerEnd::Free && !drifter;
   Problem start = problem;
   double V0[3] = {0.0, 0.0, 0.0};
   if (towed) {
@@ -348,6 +383,10 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
     throw std::runtime_error("the 3-D static solution that starts the dynamic run did not converge: " +
                              st.result.summary.message);
   im.statics = st.result;
+  if (drifter) {
+    V0[0] = st.result.drift_vx;
+    V0[1] = st.result.drift_vy;
+  }
   if (problem.environment.waves.type != WaveSpec::Type::None)
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
 
@@ -360,7 +399,7 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
 
   im.t = 0.0;
   im.Y = st.Y;
-  if (towed) {
+  if (towed || drifter) {
     for (int j = 0; j < im.nodes(); ++j) {
       double* y = im.Y.data() + N * j;
       double R[9];
@@ -369,6 +408,12 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
     }
   }
   im.Yd = Eigen::VectorXd::Zero(im.Y.size());
+  if (drifter) {
+    // The drifter's top kinematics integrate the position rate: start it at V_d (every node
+    // moves so), else the first step loses (1 - gamma) dt V_d of the drift.
+    for (int j = 0; j < im.nodes(); ++j)
+      for (int i = 0; i < 3; ++i) im.Yd[N * j + X + i] = V0[i];
+  }
   im.waterField(im.Y, 0.0, im.water);
   im.spatialRows(im.Y, im.water, im.S);
   im.endRows(im.Y, im.water, 0.0);

@@ -363,15 +363,22 @@ std::string Problem::validate() const {
       return "free_end: a free lower end (towing) needs model: 3d";
     if (end_body != kNoBody && end_body >= bodies.size())
       return "free_end.body index " + std::to_string(end_body) + ": unknown body";
-    if (top.type != TopBoundary::Type::Position)
-      return "top: a line with a free lower end needs top.position (the tow point); a force or buoy top "
-             "leaves the line's position undetermined";
+    if (top.type != TopBoundary::Type::Position && top.type != TopBoundary::Type::Buoy)
+      return "top: a line with a free lower end needs top.position (the tow point) or top.buoy (a drifting "
+             "surface buoy); a force or body top leaves the line's position undetermined";
+    if (top.type == TopBoundary::Type::Buoy && dynamics.top_motion.type != TopMotion::Type::Hold &&
+        dynamics.top_motion.type != TopMotion::Type::ForceTable)
+      return "dynamics.top_motion: a drifting buoy (top.buoy with free_end:) moves with the current and the wind; "
+             "only type hold (no extra force) or force_table (an extra force on the buoy) apply";
   }
   if (!(e = check(finite(top.tow_vx) && finite(top.tow_vy), "top.tow_velocity", std::hypot(top.tow_vx, top.tow_vy),
                   "must be finite")).empty()) return e;
   if ((top.tow_vx != 0.0 || top.tow_vy != 0.0) && lower_end != LowerEnd::Free)
     return "top.tow_velocity = (" + fmt(top.tow_vx) + ", " + fmt(top.tow_vy) +
            "): only for a line with a free lower end (free_end:); an anchored line has no steady tow";
+  if ((top.tow_vx != 0.0 || top.tow_vy != 0.0) && top.type == TopBoundary::Type::Buoy)
+    return "top.tow_velocity = (" + fmt(top.tow_vx) + ", " + fmt(top.tow_vy) +
+           "): a drifting buoy is not towed; the statics find its drift velocity";
   switch (top.type) {
     case TopBoundary::Type::Force:
       if (!(e = check(finite(top.fx), "top.force.x", top.fx, "must be finite")).empty()) return e;
@@ -404,7 +411,8 @@ std::string Problem::validate() const {
       if (formulation != Formulation::ThreeD)
         return "top.body: a subsurface buoy at the top needs model: 3d";
       if (lower_end != LowerEnd::Anchor)
-        return "top.body with free_end: a line free at both ends (a drifting system) is not supported yet";
+        return "top.body with free_end: a line free at both ends under a subsurface body is not supported; a drifting "
+               "system takes a surface buoy at the top (top.buoy)";
       if (dynamics.top_motion.type != TopMotion::Type::Hold && dynamics.top_motion.type != TopMotion::Type::ForceTable)
         return "dynamics.top_motion: with top.body the top is free; only type hold (no extra force) or force_table "
                "(an extra force on the body) apply";

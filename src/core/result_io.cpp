@@ -103,6 +103,9 @@ void writeStaticJson(std::ostream& out, const Problem& problem, const StaticResu
   out << "  \"anchor_force\": " << vec(r.anchor_force_x, r.anchor_force_y, r.anchor_force_z) << ",\n";
   out << "  \"top_tension\": " << jsonNumber(r.topTension()) << ",\n";
   out << "  \"buoy_draft\": " << jsonNumber(r.buoy_draft) << ",\n";
+  if (r.drifting)
+    out << "  \"drift_velocity\": {\"x\": " << jsonNumber(r.drift_vx) << ", \"y\": " << jsonNumber(r.drift_vy)
+        << ", \"speed\": " << jsonNumber(std::hypot(r.drift_vx, r.drift_vy)) << "},\n";
   out << "  \"node_count\": " << r.nodes.size() << ",\n";
   out << "  \"nodes\": {\n";
   const auto& n = r.nodes;
@@ -128,7 +131,7 @@ void writeStaticJson(std::ostream& out, const Problem& problem, const StaticResu
            "\"shear\": \"N, along e2\", \"shear_b\": \"N, along e3\", \"angle\": \"rad, tangent from vertical\", "
            "\"azimuth\": \"rad, tangent's horizontal direction ccw from +x\", \"curvature\": \"1/m, Omega3\", "
            "\"curvature_b\": \"1/m, Omega2\", \"twist\": \"1/m, Omega1\", \"strain\": \"-\", "
-           "\"force\": \"N\", \"buoy_draft\": \"m\"}\n";
+           "\"force\": \"N\", \"buoy_draft\": \"m\", \"drift_velocity\": \"m/s\"}\n";
   else
     out << "  \"units\": {\"s\": \"m\", \"x\": \"m\", \"z\": \"m\", \"tension\": \"N\", \"shear\": \"N\", "
            "\"angle\": \"rad from vertical, positive toward +x\", \"curvature\": \"1/m\", \"strain\": \"-\", "
@@ -183,6 +186,10 @@ std::string staticSummaryText(const Problem& problem, const StaticResult& r) {
   o << "  min tension    " << fmt("%12.1f", mn->tension) << " N   at s = " << fmt("%.2f", mn->s) << " m (node "
     << (mn - r.nodes.begin()) << ")\n";
   if (problem.top.type == TopBoundary::Type::Buoy) o << "  buoy draft     " << fmt("%.3f", r.buoy_draft) << " m\n";
+  if (r.drifting)
+    o << "  drift velocity x = " << fmt("%.4f", r.drift_vx) << ", y = " << fmt("%.4f", r.drift_vy) << " m/s ("
+      << fmt("%.4f", std::hypot(r.drift_vx, r.drift_vy)) << " m/s toward "
+      << fmt("%.1f", std::atan2(r.drift_vy, r.drift_vx) * kRadToDeg) << " deg)\n";
   return o.str();
 }
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "mooring_dynamics/core/ad_rows.hpp"
+#include "mooring_dynamics/core/drifting.hpp"
 #include "mooring_dynamics/core/equations3d.hpp"
 #include "mooring_dynamics/core/initial_guess.hpp"
 #include "mooring_dynamics/core/static_system.hpp"
@@ -157,6 +158,12 @@ void StaticSystem3D::evaluate(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, Ban
       internalForce(mn, y, F);
       buoyForce(env, tb.buoy, y[Z], B);
       for (int i = 0; i < 3; ++i) r[3 + i] = F[i] - B[i];
+      if (problem_.lower_end == Problem::LowerEnd::Free) {
+        // Drifter (drifting.hpp): the buoy held horizontally in the drifting frame, its draft
+        // balance vertically; the horizontal balance is the outer iteration's residual.
+        r[3] = y[X] - tb.x;
+        r[4] = y[Y] - tb.y;
+      }
       break;
     }
     case TopBoundary::Type::Body: {
@@ -349,16 +356,20 @@ StaticState3D solveStatic3DOnMesh(const Problem& problem, const Mesh& mesh, cons
   if (!err.empty()) throw std::invalid_argument(err);
 
   StaticState3D out;
-  // A towed line is solved in the frame moving with the tow point: the current relative to it.
-  Problem solved = problem;
-  const bool towed = problem.lower_end == Problem::LowerEnd::Free;
-  if (towed) solved.environment = relativeEnvironment(problem.environment, problem.top.tow_vx, problem.top.tow_vy);
-  out.Y = towed ? towedInitialGuess3D(solved, mesh) : planarInitialGuess3D(problem, mesh, initialGuessAzimuth(problem));
-  const double q_ref[4] = {out.Y[Q0], out.Y[Q1], out.Y[Q2], out.Y[Q3]};
-  StaticSystem3D system(solved, mesh, q_ref);
-  const SolverSummary summary = solveNewton(system, out.Y, newtonOptions(options));
-  out.result = staticResult3DFromState(problem, mesh, out.Y);
-  out.result.summary = summary;
+  if (isDrifter(problem)) {
+    out = solveDriftStatic3D(problem, mesh, options);
+  } else {
+    // A towed line is solved in the frame moving with the tow point: the current relative to it.
+    Problem solved = problem;
+    const bool towed = problem.lower_end == Problem::LowerEnd::Free;
+    if (towed) solved.environment = relativeEnvironment(problem.environment, problem.top.tow_vx, problem.top.tow_vy);
+    out.Y = towed ? towedInitialGuess3D(solved, mesh) : planarInitialGuess3D(problem, mesh, initialGuessAzimuth(problem));
+    const double q_ref[4] = {out.Y[Q0], out.Y[Q1], out.Y[Q2], out.Y[Q3]};
+    StaticSystem3D system(solved, mesh, q_ref);
+    const SolverSummary summary = solveNewton(system, out.Y, newtonOptions(options));
+    out.result = staticResult3DFromState(problem, mesh, out.Y);
+    out.result.summary = summary;
+  }
   if (problem.top.type == TopBoundary::Type::Buoy && out.result.buoy_draft >= problem.top.buoy.totalHeight()) {
     out.result.summary.converged = false;
     out.result.summary.message += "; the surface buoy is fully submerged (draft " +

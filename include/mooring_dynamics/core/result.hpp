@@ -46,6 +46,11 @@ struct StaticResult {
   double anchor_force_z = 0.0;   ///< [N]
   double anchor_force_y = 0.0;   ///< [N] (3-D model)
   double buoy_draft = 0.0;       ///< surface buoy draft [m] (buoy top boundary only)
+  /// Drifting system (free_end: under top.buoy, 3-D): the steady horizontal drift velocity V_d
+  /// the statics found [m/s]; positions are those at t = 0 in the frame drifting with it.
+  bool drifting = false;
+  double drift_vx = 0.0;
+  double drift_vy = 0.0;
   SolverSummary summary;
 
   double topTension() const { return nodes.empty() ? 0.0 : nodes.back().tension; }
