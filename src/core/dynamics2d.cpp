@@ -434,13 +434,8 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   const TopInput top = im.top(t_new);
   DynamicStepSystem sys(im, t_new, dt, top);
   Eigen::VectorXd Y = im.Y + dt * im.Yd;  // predictor: constant rate
-  NewtonOptions no;
-  no.tolerance = im.opt.tolerance;
-  no.max_iterations = im.opt.max_iterations;
-  no.mu0 = im.opt.relaxation;
-  no.adaptive = im.opt.adaptive_relaxation;
-  // Modified Newton (dynamics.jacobian_reuse): a kept factorization belongs to one step size.
-  no.reuse_jacobian = im.opt.jacobian_reuse;
+  const NewtonOptions no = stepNewtonOptions(im.opt);
+  // A kept factorization (modified Newton) belongs to one step size.
   if (dt != im.factored_dt) im.newton_matrix.setZero();
   NewtonWork work;
   const SolverSummary s = solveNewton(sys, Y, no, &im.newton_matrix, &work);

@@ -33,8 +33,6 @@ constexpr int kTopRows = 6;
 constexpr int kFreeEndRows = 7;
 constexpr int kTowTopRows = 9;
 constexpr int kMaxEndRows = 10;
-const char* const kVarNames[N] = {"eps", "S2", "S3", "u1", "u2", "u3", "Omega1", "Omega2",
-                                  "Omega3", "q0", "q1", "q2", "q3", "x", "y", "z"};
 
 }  // namespace
 
@@ -146,7 +144,7 @@ class DynamicStepSystem3D : public NewtonSystem {
   std::string describe(int i) const override {
     const std::size_t j = static_cast<std::size_t>(i / N);
     std::ostringstream os;
-    os << "node " << j << " (s = " << im_.mesh.nodes[j].s << " m) " << kVarNames[i % N];
+    os << "node " << j << " (s = " << im_.mesh.nodes[j].s << " m) " << varName(i % N);
     return os.str();
   }
   double stepLimit(const Eigen::VectorXd& dY) const override {
@@ -462,12 +460,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
     Yv += 0.5 * dt * (im.Yd - im.Yd_prev);
   // A kept factorization belongs to one step size (the matrix holds 1 / (gamma dt)).
   if (dt != im.factored_dt) im.newton_matrix.setZero();
-  NewtonOptions no;
-  no.reuse_jacobian = im.opt.jacobian_reuse;
-  no.tolerance = im.opt.tolerance;
-  no.max_iterations = im.opt.max_iterations;
-  no.mu0 = im.opt.relaxation;
-  no.adaptive = im.opt.adaptive_relaxation;
+  const NewtonOptions no = stepNewtonOptions(im.opt);
   NewtonWork work;
   const SolverSummary s = solveNewton(sys, Yv, no, &im.newton_matrix, &work);
   im.factored_dt = dt;

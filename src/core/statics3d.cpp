@@ -23,8 +23,6 @@ using AD32 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
 using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
 constexpr int kAnchorRows = 10;
 constexpr int kTopRows = 6;
-const char* const kVarNames[N] = {"eps", "S2", "S3", "u1", "u2", "u3", "Omega1", "Omega2",
-                                  "Omega3", "q0", "q1", "q2", "q3", "x", "y", "z"};
 
 /// Water velocity of the steady current at a node (statics: no waves).
 Water currentAt(const Environment& env, double z) {
@@ -66,7 +64,7 @@ double StaticSystem3D::scale(int i) const { return chi_[i % N]; }
 std::string StaticSystem3D::describe(int i) const {
   const std::size_t j = static_cast<std::size_t>(i / N);
   std::ostringstream os;
-  os << "node " << j << " (s = " << mesh_.nodes[j].s << " m) " << kVarNames[i % N];
+  os << "node " << j << " (s = " << mesh_.nodes[j].s << " m) " << varName(i % N);
   return os.str();
 }
 

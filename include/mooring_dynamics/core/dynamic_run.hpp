@@ -13,9 +13,21 @@
 
 #include "mooring_dynamics/core/dynamics2d.hpp"
 #include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/newton.hpp"
 
 namespace mooring_dynamics {
 namespace core {
+
+/// Newton options of one time step from the problem's dynamics options (section 6 per step).
+inline NewtonOptions stepNewtonOptions(const DynamicOptions& o) {
+  NewtonOptions no;
+  no.tolerance = o.tolerance;
+  no.max_iterations = o.max_iterations;
+  no.mu0 = o.relaxation;
+  no.adaptive = o.adaptive_relaxation;
+  no.reuse_jacobian = o.jacobian_reuse;  // modified Newton (dynamics.jacobian_reuse)
+  return no;
+}
 
 namespace detail {
 /// Section 4.3: try a step; on failure cut it by 10 and take ten sub-steps, recursively, down to

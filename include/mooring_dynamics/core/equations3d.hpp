@@ -30,6 +30,12 @@ namespace core {
 namespace eq3d {
 
 constexpr int N = 16;
+/// Names of the unknowns, for messages ("node 12 (s = 5.5 m) Omega2").
+inline const char* varName(int k) {
+  static const char* const kNames[N] = {"eps", "S2", "S3", "u1", "u2", "u3", "Omega1", "Omega2",
+                                        "Omega3", "q0", "q1", "q2", "q3", "x", "y", "z"};
+  return kNames[k];
+}
 enum Var { EPS = 0, S2 = 1, S3 = 2, U1 = 3, U2 = 4, U3 = 5, O1 = 6, O2 = 7, O3 = 8,
            Q0 = 9, Q1 = 10, Q2 = 11, Q3 = 12, X = 13, Y = 14, Z = 15 };
 /// Rows of an interval with an inertia part (force balance and velocity compatibility): the rows
