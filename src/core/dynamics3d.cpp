@@ -505,6 +505,50 @@ double DynamicSolver3D::jacobianFiniteDifferenceError(double dt) const {
   return c.outside_band ? 1.0 : c.worst;
 }
 
+struct DynamicSolver3D::Saved {
+  double t = 0.0;
+  Eigen::VectorXd Y, Yd, Yd_prev, S;
+  std::vector<Water> water;
+  double S_end[3] = {0.0, 0.0, 0.0}, S_top[3] = {0.0, 0.0, 0.0};
+  double last_dt = 0.0;
+  Totals totals;
+};
+
+std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
+  const Impl& im = *impl_;
+  auto s = std::make_shared<Saved>();
+  s->t = im.t;
+  s->Y = im.Y;
+  s->Yd = im.Yd;
+  s->Yd_prev = im.Yd_prev;
+  s->S = im.S;
+  s->water = im.water;
+  for (int i = 0; i < 3; ++i) {
+    s->S_end[i] = im.S_end[i];
+    s->S_top[i] = im.S_top[i];
+  }
+  s->last_dt = im.last_dt;
+  s->totals = im.totals;
+  return s;
+}
+
+void DynamicSolver3D::restore(const Saved& s) {
+  Impl& im = *impl_;
+  im.t = s.t;
+  im.Y = s.Y;
+  im.Yd = s.Yd;
+  im.Yd_prev = s.Yd_prev;
+  im.S = s.S;
+  im.water = s.water;
+  for (int i = 0; i < 3; ++i) {
+    im.S_end[i] = s.S_end[i];
+    im.S_top[i] = s.S_top[i];
+  }
+  im.last_dt = s.last_dt;
+  im.totals = s.totals;
+  // A kept factorization (modified Newton) stays: it is still a Jacobian of this step size.
+}
+
 DynamicSeries runDynamic3D(const Problem& problem, const std::function<void(double, double)>& progress) {
   return runDynamicWith<DynamicSolver3D>(problem, progress);
 }

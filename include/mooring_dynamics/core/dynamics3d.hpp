@@ -48,6 +48,13 @@ class DynamicSolver3D {
   using Totals = DynamicSolver2D::Totals;
   Totals totals() const;
 
+  /// The time-stepping state (time, unknowns and rates, the previous level's weighted rows), to
+  /// try a step and go back: a partitioned coupling (systems of lines) re-runs the same step with
+  /// other top motions. Opaque; restore() takes one saved from this solver.
+  struct Saved;
+  std::shared_ptr<const Saved> save() const;
+  void restore(const Saved& saved);
+
   struct Impl;
 
  private:

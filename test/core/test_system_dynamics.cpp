@@ -1,0 +1,183 @@
+// Dynamics of systems of lines (system_dynamics.hpp): the heave natural frequency of a free body
+// on an elastic tether (sqrt(k / M), the same physics as test_subsurface's top body, here through
+// the partitioned point coupling), a symmetric three-leg buoy held still (a fixed point) and
+// heaved by a vertical pull (it stays on the axis, the legs stay equal), and the input checks.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/system_dynamics.hpp"
+
+using namespace mooring_dynamics::core;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kFrequencyRelTol = 0.02;  // zero crossings at 80 steps per period (test_dynamics2d)
+// Held still: every step starts on the static state; the lines' Newton tolerance (1e-6 scaled)
+// and the point iteration's (1e-7 of the largest force) leave the buoy within 1e-4 m.
+constexpr double kFixedPointTol = 1e-4;  // [m]
+// Symmetry: three copies of one problem turned by 120 deg, each solved to its tolerances.
+constexpr double kSymmetryRelTol = 1e-4;
+constexpr double kAxisTol = 1e-3;  // [m]
+
+SystemPoint point(const std::string& name, SystemPoint::Type t, double x, double y, double z) {
+  SystemPoint p;
+  p.name = name;
+  p.type = t;
+  p.x = x;
+  p.y = y;
+  p.z = z;
+  p.position_given = true;
+  return p;
+}
+
+SystemLine line(const std::string& name, std::size_t from, std::size_t to, double length, double spacing) {
+  SystemLine l;
+  l.name = name;
+  l.from = from;
+  l.to = to;
+  Segment s;
+  s.length = length;
+  s.spacing = spacing;
+  l.segments = {s};
+  return l;
+}
+
+}  // namespace
+
+TEST(SystemDynamics, BodyOnAnElasticTetherHeavesAtSqrtKOverM) {
+  SystemProblem s;
+  s.environment.depth = 300.0;
+  Material m;
+  m.EA = 2.0e5;
+  m.EI = 1.0e-2;
+  m.GJ = 1.0e-2;
+  m.mass = 0.1;
+  m.diameter = 0.012;
+  s.materials = {m};
+  Body b;
+  b.mass = 800.0;
+  b.added_mass = 200.0;
+  b.wet_weight = -3000.0;
+  b.diameter = 1.2;
+  s.bodies = {b};
+  SystemPoint body = point("float", SystemPoint::Type::Body, 0.0, 0.0, -180.0);
+  body.body = 0;
+  s.points = {point("anchor", SystemPoint::Type::Anchor, 0.0, 0.0, -200.0), body};
+  s.lines = {line("tether", 0, 1, 20.0, 1.0)};
+  const double k = m.EA / 20.0, M = b.mass + b.added_mass + m.mass * 20.0 / 3.0;
+  const double f1 = std::sqrt(k / M) / (2.0 * kPi), P = 1.0 / f1;
+  DynamicOptions o;
+  o.dt = P / 80.0;
+  o.scheme = GeneralizedAlpha::fromLambdaInf(-0.5);
+  SystemDynamics sim(s, o);
+  sim.setPointForce(1, [P](double t) {
+    const double up = t < 0.1 * P ? 5000.0 * t / (0.1 * P) : t < 0.2 * P ? 5000.0 * (0.2 * P - t) / (0.1 * P) : 0.0;
+    return std::array<double, 3>{0.0, 0.0, up};
+  });
+  const double z0 = sim.points()[1].z;
+  std::vector<double> t{0.0}, z{0.0};
+  for (int i = 1; i <= 800; ++i) {
+    std::string why;
+    ASSERT_TRUE(sim.advanceTo(i * o.dt, &why)) << why;
+    t.push_back(sim.time());
+    z.push_back(sim.points()[1].z - z0);
+  }
+  std::vector<double> up;
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (t[i - 1] > 0.5 * P && z[i - 1] < 0.0 && z[i] >= 0.0)
+      up.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-z[i - 1]) / (z[i] - z[i - 1]));
+  ASSERT_GE(up.size(), 8u);
+  const double f = (up.size() - 1) / (up.back() - up.front());
+  std::printf("system heave: measured %.4f Hz, sqrt(k/M)/2pi %.4f Hz (%ld point iterations, %ld line steps)\n", f,
+              f1, sim.pointIterations(), sim.lineSteps());
+  EXPECT_NEAR(f, f1, kFrequencyRelTol * f1);
+}
+
+namespace {
+SystemProblem threeLeg() {
+  SystemProblem s;
+  s.environment.depth = 100.0;
+  s.environment.seabed.stiffness = 1.0e5;
+  s.environment.seabed.damping = 1.0e3;
+  Material c;
+  c.EA = 5.0e8;
+  c.EI = 10.0;
+  c.GJ = 1.0;
+  c.mass = 40.0;
+  c.added_mass = 5.0;
+  c.wet_weight = 300.0;
+  c.diameter = 0.08;
+  c.cdn = 2.4;
+  c.cdt = 1.15;
+  s.materials = {c};
+  SystemPoint b = point("buoy", SystemPoint::Type::Buoy, 0.0, 0.0, -1.0);
+  b.buoy.shape = SurfaceBuoy::Shape::Cylinder;
+  b.buoy.diameter = 4.0;
+  b.buoy.height = 3.0;
+  b.buoy.mass = 5000.0;
+  b.buoy.added_mass = 3000.0;
+  b.buoy.cd = 1.0;
+  s.points.push_back(b);
+  for (int k = 0; k < 3; ++k) {
+    const double a = 2.0 * kPi * k / 3.0;
+    s.points.push_back(point("anchor" + std::to_string(k), SystemPoint::Type::Anchor, 250.0 * std::cos(a),
+                             250.0 * std::sin(a), -100.0));
+    s.lines.push_back(line("leg" + std::to_string(k), static_cast<std::size_t>(k + 1), 0, 300.0, 10.0));
+  }
+  return s;
+}
+}  // namespace
+
+TEST(SystemDynamics, HeldThreeLegBuoyIsAFixedPoint) {
+  DynamicOptions o;
+  o.dt = 0.5;
+  SystemDynamics sim(threeLeg(), o);
+  const auto p0 = sim.points()[0];
+  std::string why;
+  ASSERT_TRUE(sim.advanceTo(20.0, &why)) << why;
+  const auto p = sim.points()[0];
+  EXPECT_NEAR(p.x, p0.x, kFixedPointTol);
+  EXPECT_NEAR(p.y, p0.y, kFixedPointTol);
+  EXPECT_NEAR(p.z, p0.z, kFixedPointTol);
+}
+
+TEST(SystemDynamics, PulledDownThreeLegBuoyStaysOnTheAxisWithEqualLegs) {
+  DynamicOptions o;
+  o.dt = 0.25;
+  SystemDynamics sim(threeLeg(), o);
+  sim.setPointForce(0, [](double t) {
+    return std::array<double, 3>{0.0, 0.0, t < 2.0 ? -20000.0 * std::sin(kPi * t / 2.0) : 0.0};
+  });
+  const double z0 = sim.points()[0].z;
+  double deepest = 0.0;
+  for (int i = 1; i <= 60; ++i) {
+    std::string why;
+    ASSERT_TRUE(sim.advanceTo(0.25 * i, &why)) << why;
+    const auto p = sim.points()[0];
+    EXPECT_NEAR(p.x, 0.0, kAxisTol) << sim.time();
+    EXPECT_NEAR(p.y, 0.0, kAxisTol) << sim.time();
+    deepest = std::min(deepest, p.z - z0);
+    const double T0 = sim.line(0).topTension();
+    for (int k = 1; k < 3; ++k) EXPECT_NEAR(sim.line(k).topTension(), T0, kSymmetryRelTol * T0) << sim.time();
+  }
+  EXPECT_LT(deepest, -0.05);  // the pull did push the buoy down
+  std::printf("three-leg heave: deepest %.3f m below the static draft; %ld point iterations, %ld line steps\n",
+              -deepest, sim.pointIterations(), sim.lineSteps());
+}
+
+TEST(SystemDynamics, RejectsAFreePointAtALinesLowerEnd) {
+  const SystemProblem s = loadSystemFromFile("config/branched_array.yaml");
+  DynamicOptions o;
+  try {
+    SystemDynamics sim(s, o);
+    ADD_FAILURE() << "a branched array with lines hanging below the float started";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("main_upper"), std::string::npos) << e.what();
+  }
+}
