@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <ostream>
@@ -11,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "mooring_dynamics/core/dynamics_options.hpp"
 
 #include "cli_app.hpp"
 
@@ -92,6 +95,9 @@ int runPlot(const ParsedArgs& args, std::ostream& out, std::ostream& err);      
 /// `static` on a system file (points and lines), cmd_system.cpp.
 int runSystemStatic(const std::string& path, bool want_table, std::size_t stride, double spacing_scale,
                     const std::string& out_dir, std::ostream& out, std::ostream& err);
+/// `dynamic` on a system file, cmd_system.cpp: `overrides` applies the command-line options.
+int runSystemDynamic(const std::string& path, const std::function<void(core::DynamicOptions&)>& overrides,
+                     const std::string& out_dir, std::ostream& out, std::ostream& err);
 
 }  // namespace detail
 }  // namespace cli

@@ -230,11 +230,6 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
   const std::string out_dir = args.has("out") ? args.values.at("out") : std::string();
   if (args.has("out") && out_dir.empty()) throw UsageError("option '--out' needs a directory, got ''");
   if (args.has("scheme") && args.has("lambda-inf")) throw UsageError("give --scheme or --lambda-inf, not both");
-  if (core::isSystemFile(problem_path)) {
-    err << kProg << ": error: " << problem_path
-        << ": a system of several lines (points and lines) has statics only so far; run `cable_sim static` on it\n";
-    return kExitBadInput;
-  }
   double duration = 0.0, dt = 0.0, lambda_inf = 0.0;
   if (args.has("duration")) duration = parsePositiveDouble("duration", args.values.at("duration"));
   if (args.has("dt")) dt = parsePositiveDouble("dt", args.values.at("dt"));
@@ -253,6 +248,22 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
       throw UsageError("option '--lambda-inf' needs a number in [-1, 1), got '" + args.values.at("lambda-inf") + "'");
   }
 
+  // Command-line overrides of the file's dynamics section (problem or system).
+  const auto overrides = [&](core::DynamicOptions& dyn) {
+    if (args.has("duration")) dyn.duration = duration;
+    if (args.has("dt")) dyn.dt = dt;
+    if (args.has("scheme")) {
+      dyn.scheme = scheme;
+      dyn.scheme_name = args.values.at("scheme");
+    }
+    if (args.has("lambda-inf")) {
+      dyn.scheme = core::GeneralizedAlpha::fromLambdaInf(lambda_inf);
+      dyn.scheme_name = "lambda_inf=" + fmtNum("%.10g", lambda_inf);
+    }
+  };
+  if (core::isSystemFile(problem_path))  // several lines joined at points
+    return runSystemDynamic(problem_path, overrides, out_dir, out, err);
+
   core::Problem problem;
   try {
     problem = core::loadProblemFromFile(problem_path);
@@ -264,18 +275,8 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
     return kExitBadInput;
   }
 
-  // Command-line overrides of the file's dynamics section.
   core::DynamicOptions& dyn = problem.dynamics;
-  if (args.has("duration")) dyn.duration = duration;
-  if (args.has("dt")) dyn.dt = dt;
-  if (args.has("scheme")) {
-    dyn.scheme = scheme;
-    dyn.scheme_name = args.values.at("scheme");
-  }
-  if (args.has("lambda-inf")) {
-    dyn.scheme = core::GeneralizedAlpha::fromLambdaInf(lambda_inf);
-    dyn.scheme_name = "lambda_inf=" + fmtNum("%.10g", lambda_inf);
-  }
+  overrides(dyn);
   if (!(dyn.duration > 0.0)) {
     err << kProg << ": error: " << problem_path
         << ": dynamics.duration: not given; a dynamic run needs the simulated time [s]: add a section\n"

@@ -509,7 +509,8 @@ void readPosition(const Item& it, double& x, double& y, double& z) {
 SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
   const Item rit{root, "", markOf(root, YAML::Mark::null_mark())};
   if (!root.IsMap()) throw ProblemError("top level: expected a map" + lineSuffix(rit.mark));
-  const Map top(rit, {"name", "model", "environment", "materials", "bodies", "points", "lines", "solver"});
+  const Map top(rit, {"name", "model", "environment", "materials", "bodies", "points", "lines", "solver",
+                      "dynamics"});
   SystemProblem sp;
   if (top.has("name")) sp.name = readString(top.at("name"));
   if (top.has("model")) sp.formulation = readModel(top.at("model"));
@@ -573,6 +574,19 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
     readLine(m.required("segments"), tmp, cat.mat_index, cat.mat_names, cat.body_index, cat.body_names);
     l.segments = tmp.segments;
     sp.lines.push_back(l);
+  }
+  if (presentAndNotNull(top, "dynamics")) {
+    double longest = 0.0;
+    for (const SystemLine& l : sp.lines) {
+      double L = 0.0;
+      for (const Segment& g : l.segments) L += g.length;
+      longest = std::max(longest, L);
+    }
+    const Item di = top.at("dynamics");
+    readDynamics(di, sp.dynamics, longest);
+    if (sp.dynamics.top_motion.type != TopMotion::Type::Hold)
+      di.fail("top_motion: a system's free points move by themselves; there is no top motion to give");
+    if (!sp.dynamics.record_s.empty()) di.fail("record_s: not used by systems (every line's top tension is written)");
   }
   std::string msg = sp.static_options.validate();
   if (msg.empty()) msg = sp.validate();

@@ -58,6 +58,9 @@ struct SystemProblem {
   std::vector<SystemPoint> points;
   std::vector<SystemLine> lines;
   StaticOptions static_options;  ///< for every line's solve
+  /// `dynamics:` of the file (duration, dt, scheme, tolerances; no top motion: the free points
+  /// move by themselves) for SystemDynamics / `cable_sim dynamic`.
+  DynamicOptions dynamics;
 
   /// Empty when consistent, else a message naming the field, value and constraint: unknown
   /// points, a line from a point to itself, unused points, a graph in several pieces, no anchor
