@@ -45,6 +45,7 @@ struct DynamicSolver3D::Impl {
   GeneralizedAlpha ga;
   DynamicOptions opt;
   std::function<TopState(double)> top;
+  std::function<TopState(double)> bottom;  ///< moving anchor (position, velocity); empty: fixed
   StaticResult statics;
 
   double t = 0.0;
@@ -205,12 +206,26 @@ class DynamicStepSystem3D : public NewtonSystem {
         for (int q = 0; q < 3; ++q) r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S_end[q]);
         k0 = 3;
       } else {
-        r[0] = y[U1];
-        r[1] = y[U2];
-        r[2] = y[U3];
-        r[3] = y[X] - im_.problem.anchor_x;
-        r[4] = y[eq3d::Y] - im_.problem.anchor_y;
-        r[5] = y[Z] - im_.problem.anchor_z;
+        if (im_.bottom) {
+          // A moving lower end (a line below a free point of a system): its velocity and
+          // position prescribed, as a fixed anchor's are.
+          const TopState b = im_.bottom(t_);
+          S16 V[3];
+          globalVelocity(y, V);
+          r[0] = V[0] - b.vx;
+          r[1] = V[1] - b.vy;
+          r[2] = V[2] - b.vz;
+          r[3] = y[X] - b.x;
+          r[4] = y[eq3d::Y] - b.y;
+          r[5] = y[Z] - b.z;
+        } else {
+          r[0] = y[U1];
+          r[1] = y[U2];
+          r[2] = y[U3];
+          r[3] = y[X] - im_.problem.anchor_x;
+          r[4] = y[eq3d::Y] - im_.problem.anchor_y;
+          r[5] = y[Z] - im_.problem.anchor_z;
+        }
         k0 = 6;
       }
       r[k0] = y[O2];
@@ -431,6 +446,11 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
 DynamicSolver3D::~DynamicSolver3D() = default;
 
 void DynamicSolver3D::setTopInput(std::function<TopState(double)> source) { impl_->top = std::move(source); }
+void DynamicSolver3D::setLowerEndInput(std::function<TopState(double)> source) {
+  if (impl_->problem.lower_end == Problem::LowerEnd::Free)
+    throw std::invalid_argument("setLowerEndInput: the line's lower end is free; it has no anchor to move");
+  impl_->bottom = std::move(source);
+}
 double DynamicSolver3D::time() const { return impl_->t; }
 const StaticResult& DynamicSolver3D::initialStatic() const { return impl_->statics; }
 DynamicSolver3D::Totals DynamicSolver3D::totals() const { return impl_->totals; }

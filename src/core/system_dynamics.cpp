@@ -31,7 +31,7 @@ struct SystemDynamics::Impl {
   SystemStaticResult statics;
   std::vector<std::unique_ptr<DynamicSolver3D>> lines;
   std::vector<std::size_t> free_pts;                 ///< point indices of the free points
-  std::vector<std::vector<std::size_t>> lines_at;    ///< lines whose upper end is at each point
+  std::vector<std::vector<std::size_t>> lines_at;    ///< lines with an end at each point
   std::vector<std::function<std::array<double, 3>(double)>> forces;
   // Point state at time t: position, velocity, acceleration (3 per point, all points).
   double t = 0.0;
@@ -86,12 +86,6 @@ SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions
   if (!e.empty()) throw std::invalid_argument(e);
   const std::string eo = options.validate();
   if (!eo.empty()) throw std::invalid_argument(eo);
-  for (const SystemLine& l : system.lines)
-    if (l.from != SystemLine::kFreeEnd && system.points[l.from].free())
-      throw std::invalid_argument("lines." + l.name + ".from = " + system.points[l.from].name +
-                                  ": the dynamics of a system move free points at the upper ends of lines only (a "
-                                  "line hanging below a free point, e.g. a branch from a junction body, is not "
-                                  "supported yet)");
   im.system = system;
   im.system.formulation = Formulation::ThreeD;  // the lines run on the 3-D solver
   im.opt = options;
@@ -121,6 +115,7 @@ SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions
     p.dynamics.record_s.clear();
     im.lines.push_back(std::make_unique<DynamicSolver3D>(p));
     im.lines_at[system.lines[i].to].push_back(i);
+    if (system.lines[i].from != SystemLine::kFreeEnd) im.lines_at[system.lines[i].from].push_back(i);
   }
 }
 
@@ -179,35 +174,46 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
       A1 = (X1 - im.X - dt * im.V - dt * dt * (0.5 - kBeta) * im.A) / (kBeta * dt * dt);
       V1 = im.V + dt * ((1.0 - kGamma) * im.A + kGamma * A1);
     };
-    // Run the lines whose tops are at `pts` through the step with the points at X1 (positions
-    // and velocities linear in time over the step); false when a line's step fails.
+    // The motion of point p over the step: position and velocity linear in time from (X, V) at
+    // t to (X1, V1) at t1 (a fixed point stays where it is).
+    auto pointMotion = [&](std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      const double t0 = im.t;
+      const Eigen::Vector3d x0 = im.X.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                            v0 = im.V.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                            x1 = X1.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                            v1 = V1.segment<3>(static_cast<Eigen::Index>(3 * p));
+      return [=](double tau) {
+        const double w = dt > 0.0 ? std::clamp((tau - t0) / dt, 0.0, 1.0) : 1.0;
+        const Eigen::Vector3d x = x0 + w * (x1 - x0), v = v0 + w * (v1 - v0);
+        TopState s;
+        s.x = x[0];
+        s.y = x[1];
+        s.z = x[2];
+        s.vx = v[0];
+        s.vy = v[1];
+        s.vz = v[2];
+        return s;
+      };
+    };
+    // Run every line with an end at one of `pts` through the step with the points at X1; false
+    // when a line's step fails.
     std::string why;
     auto runLines = [&](const std::vector<std::size_t>& pts, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      std::vector<char> done(im.lines.size(), 0);
       for (std::size_t p : pts)
         for (std::size_t i : im.lines_at[p]) {
+          if (done[i]) continue;
+          done[i] = 1;
           DynamicSolver3D& line = *im.lines[i];
+          const SystemLine& sl = im.system.lines[i];
           line.restore(*saved[i]);
-          const double t0 = im.t;
-          const Eigen::Vector3d x0 = im.X.segment<3>(static_cast<Eigen::Index>(3 * p)),
-                                v0 = im.V.segment<3>(static_cast<Eigen::Index>(3 * p)),
-                                x1 = X1.segment<3>(static_cast<Eigen::Index>(3 * p)),
-                                v1 = V1.segment<3>(static_cast<Eigen::Index>(3 * p));
-          line.setTopInput([=](double tau) {
-            const double w = dt > 0.0 ? std::clamp((tau - t0) / dt, 0.0, 1.0) : 1.0;
-            const Eigen::Vector3d x = x0 + w * (x1 - x0), v = v0 + w * (v1 - v0);
-            TopState s;
-            s.x = x[0];
-            s.y = x[1];
-            s.z = x[2];
-            s.vx = v[0];
-            s.vy = v[1];
-            s.vz = v[2];
-            return s;
-          });
+          line.setTopInput(pointMotion(sl.to, X1, V1));
+          if (sl.from != SystemLine::kFreeEnd && im.system.points[sl.from].free())
+            line.setLowerEndInput(pointMotion(sl.from, X1, V1));
           ++im.line_steps;
           const StepReport rep = line.advanceTo(t1);
           if (!rep.ok) {
-            why = "line " + im.system.lines[i].name + ": " + rep.message;
+            why = "line " + sl.name + ": " + rep.message;
             return false;
           }
         }
@@ -224,11 +230,15 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
         im.load(p, X1.data() + 3 * p, V1.data() + 3 * p, t1, F);
         scale = std::max({scale, std::abs(F[2])});
         for (std::size_t i : im.lines_at[p]) {
+          // A line pulls its upper point with -top_force and its lower point with anchor_force.
           const StaticResult s = im.lines[i]->snapshot();
-          F[0] -= s.top_force_x;
-          F[1] -= s.top_force_y;
-          F[2] -= s.top_force_z;
-          scale = std::max({scale, std::abs(s.top_force_x), std::abs(s.top_force_y), std::abs(s.top_force_z)});
+          const bool top = im.system.lines[i].to == p;
+          const double f[3] = {top ? -s.top_force_x : s.anchor_force_x, top ? -s.top_force_y : s.anchor_force_y,
+                               top ? -s.top_force_z : s.anchor_force_z};
+          for (int c = 0; c < 3; ++c) {
+            F[c] += f[c];
+            scale = std::max(scale, std::abs(f[c]));
+          }
         }
         for (int c = 0; c < 3; ++c)
           G[static_cast<Eigen::Index>(3 * k + c)] = im.mass(p) * A1[static_cast<Eigen::Index>(3 * p + c)] - F[c];

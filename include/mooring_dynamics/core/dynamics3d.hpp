@@ -31,6 +31,9 @@ class DynamicSolver3D {
   /// Replace the top motion of the problem file (e.g. by a live source). Called with the time
   /// [s]; must be defined for every t >= time().
   void setTopInput(std::function<TopState(double)> source);
+  /// Move the anchor: its position and velocity (x, y, z, vx, vy, vz of the TopState) as a
+  /// function of time, for a line below a free point of a system. Starts where statics put it.
+  void setLowerEndInput(std::function<TopState(double)> source);
 
   /// Advance to t_end >= time() in base steps, cutting a step that does not converge (4.3). On
   /// failure the state stays at the last converged time and the report says where it failed.

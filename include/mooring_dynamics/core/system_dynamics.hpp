@@ -1,9 +1,10 @@
-// Dynamics of a system of lines (system.hpp) whose free points (surface buoys, submerged bodies)
-// sit at the upper ends of their lines: multi-leg moorings of a buoy or a junction body.
+// Dynamics of a system of lines (system.hpp): free points (surface buoys, submerged bodies) at the
+// ends of lines, e.g. a multi-leg buoy or a branched array's junction float.
 //
 // Partitioned implicit coupling: each line is advanced by its own DynamicSolver3D (the 3-D box
-// scheme and generalized-alpha of dynamics3d.hpp) with its top following its point (velocity and
-// position fed back, as a vessel's fairlead); each free point is a rigid point mass (mass and
+// scheme and generalized-alpha of dynamics3d.hpp) with its top following its upper point
+// (velocity and position fed back, as a vessel's fairlead) and its anchor following its lower
+// point (setLowerEndInput) when that point is free; each free point is a rigid point mass (mass and
 // added mass, buoyancy from the draft for a buoy, net buoyancy for a body, quadratic drag on the
 // velocity relative to the current, wind on a buoy) integrated by Newmark's trapezoidal rule
 // (gamma = 1/2, beta = 1/4). Every base step solves the points' new positions by Newton
@@ -29,8 +30,8 @@ namespace core {
 class SystemDynamics {
  public:
   /// Solves the system's statics and starts every line and point from them, at rest. Throws
-  /// std::invalid_argument for an invalid system, one with a free point at a line's lower end
-  /// (not supported yet), or invalid options; std::runtime_error when the statics fail.
+  /// std::invalid_argument for an invalid system or invalid options; std::runtime_error when the
+  /// statics fail.
   SystemDynamics(const SystemProblem& system, const DynamicOptions& options);
   ~SystemDynamics();
   SystemDynamics(const SystemDynamics&) = delete;
