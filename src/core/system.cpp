@@ -294,6 +294,11 @@ SystemStaticResult solveSystemStatic(const SystemProblem& s, const SystemSolveOp
     for (std::size_t k = 0; k < free_pts.size() && jac_ok; ++k) {
       const std::size_t p = free_pts[k];
       for (int c = 0; c < 3 && jac_ok; ++c) {
+        if (c == 1 && s.formulation == Formulation::TwoD) {
+          // A 2-D system stays in the plane y = 0: y is not an unknown (its residual is 0).
+          J(static_cast<Eigen::Index>(3 * k + 1), static_cast<Eigen::Index>(3 * k + 1)) = 1.0;
+          continue;
+        }
         std::vector<double> Xp = X;
         Xp[3 * p + c] += o.fd_step;
         std::vector<StaticResult> res = ev.lines;

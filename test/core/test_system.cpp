@@ -267,3 +267,25 @@ TEST(System, ShippedBranchedArraySolvesWithItsFreeTail) {
   EXPECT_NEAR(tail.nodes.back().z, r.points[2].z, 1e-6);
   EXPECT_LT(r.points[2].residual, 0.01);
 }
+
+TEST(System, PlanarSystemSolvesTheSameIn2DAnd3D) {
+  // Two chain legs from anchors on either side of a buoy, all in the plane y = 0: the 2-D lines
+  // (model: 2d) and the 3-D lines give the same equilibrium (the planar 3-D rows are the 2-D rows).
+  SystemProblem s = threeLeg(0.0);
+  s.points.resize(3);
+  s.points[1].x = 250.0;
+  s.points[1].y = 0.0;
+  s.points[2].x = -250.0;
+  s.points[2].y = 0.0;
+  s.lines.resize(2);
+  s.environment.current = {{0.0, 0.4, 0.0}};
+  const SystemStaticResult r3 = solveSystemStatic(s);
+  s.formulation = Formulation::TwoD;
+  const SystemStaticResult r2 = solveSystemStatic(s);
+  ASSERT_TRUE(r3.summary.converged && r2.summary.converged) << r3.summary.message << r2.summary.message;
+  EXPECT_NEAR(r2.points[0].x, r3.points[0].x, 1e-4);
+  EXPECT_NEAR(r2.points[0].z, r3.points[0].z, 1e-5);
+  for (int k = 0; k < 2; ++k)
+    EXPECT_NEAR(r2.lines[k].topTension(), r3.lines[k].topTension(), kSymmetryRelTol * r3.lines[k].topTension());
+  EXPECT_GT(r3.points[0].x, 0.1);  // the current pushes the buoy toward +x
+}
