@@ -8,8 +8,11 @@
 
 #include "mooring_dynamics/core/catenary.hpp"
 #include "mooring_dynamics/core/system.hpp"
+#include "system_test_util.hpp"
 
 using namespace mooring_dynamics::core;
+using mooring_dynamics::core::testing_util::line;
+using mooring_dynamics::core::testing_util::point;
 
 namespace {
 
@@ -38,27 +41,6 @@ Material chain() {
   return m;
 }
 
-SystemPoint point(const std::string& name, SystemPoint::Type t, double x, double y, double z) {
-  SystemPoint p;
-  p.name = name;
-  p.type = t;
-  p.x = x;
-  p.y = y;
-  p.z = z;
-  return p;
-}
-
-SystemLine line(const std::string& name, std::size_t from, std::size_t to, double length, double spacing) {
-  SystemLine l;
-  l.name = name;
-  l.from = from;
-  l.to = to;
-  Segment s;
-  s.length = length;
-  s.spacing = spacing;
-  l.segments = {s};
-  return l;
-}
 
 /// A surface buoy held by three 300 m chain legs to anchors 250 m away at 120 deg, 100 m deep.
 SystemProblem threeLeg(double current) {

@@ -11,8 +11,11 @@
 
 #include "mooring_dynamics/core/problem_io.hpp"
 #include "mooring_dynamics/core/system_dynamics.hpp"
+#include "system_test_util.hpp"
 
 using namespace mooring_dynamics::core;
+using mooring_dynamics::core::testing_util::line;
+using mooring_dynamics::core::testing_util::point;
 
 namespace {
 
@@ -25,28 +28,6 @@ constexpr double kFixedPointTol = 1e-4;  // [m]
 constexpr double kSymmetryRelTol = 1e-4;
 constexpr double kAxisTol = 1e-3;  // [m]
 
-SystemPoint point(const std::string& name, SystemPoint::Type t, double x, double y, double z) {
-  SystemPoint p;
-  p.name = name;
-  p.type = t;
-  p.x = x;
-  p.y = y;
-  p.z = z;
-  p.position_given = true;
-  return p;
-}
-
-SystemLine line(const std::string& name, std::size_t from, std::size_t to, double length, double spacing) {
-  SystemLine l;
-  l.name = name;
-  l.from = from;
-  l.to = to;
-  Segment s;
-  s.length = length;
-  s.spacing = spacing;
-  l.segments = {s};
-  return l;
-}
 
 }  // namespace
 
@@ -66,7 +47,7 @@ TEST(SystemDynamics, BodyOnAnElasticTetherHeavesAtSqrtKOverM) {
   b.wet_weight = -3000.0;
   b.diameter = 1.2;
   s.bodies = {b};
-  SystemPoint body = point("float", SystemPoint::Type::Body, 0.0, 0.0, -180.0);
+  SystemPoint body = point("float", SystemPoint::Type::Body, 0.0, 0.0, -180.0, true);
   body.body = 0;
   s.points = {point("anchor", SystemPoint::Type::Anchor, 0.0, 0.0, -200.0), body};
   s.lines = {line("tether", 0, 1, 20.0, 1.0)};
@@ -116,7 +97,7 @@ SystemProblem threeLeg() {
   c.cdn = 2.4;
   c.cdt = 1.15;
   s.materials = {c};
-  SystemPoint b = point("buoy", SystemPoint::Type::Buoy, 0.0, 0.0, -1.0);
+  SystemPoint b = point("buoy", SystemPoint::Type::Buoy, 0.0, 0.0, -1.0, true);
   b.buoy.shape = SurfaceBuoy::Shape::Cylinder;
   b.buoy.diameter = 4.0;
   b.buoy.height = 3.0;
