@@ -1,5 +1,6 @@
 #include "mooring_dynamics/ros/system_node.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <geometry_msgs/WrenchStamped.h>
@@ -51,6 +52,13 @@ bool SystemStaticNode::start() {
     return false;
   }
   const ros::Time stamp = ros::Time::now();
+  // One tension colour scale for all lines (drawn once, with the first line).
+  double tmin = 1e300, tmax = -1e300;
+  for (const auto& l : r.lines)
+    for (const auto& n : l.nodes) {
+      tmin = std::min(tmin, n.tension);
+      tmax = std::max(tmax, n.tension);
+    }
   visualization_msgs::MarkerArray all;
   for (std::size_t i = 0; i < r.lines.size(); ++i) {
     const std::string& name = system_.lines[i].name;
@@ -58,8 +66,12 @@ bool SystemStaticNode::start() {
     line_pubs_[i].publish(state);
     // The line's own markers, in a namespace of its own so that the ids of the lines do not clash.
     core::Problem p = system_.lineProblem(i, std::vector<double>(3 * system_.points.size(), 0.0));
-    visualization_msgs::MarkerArray m = makeMarkers(state, system_.environment, markerOptionsFor(p, marker_scale_));
+    MarkerOptions mo = markerOptionsFor(p, marker_scale_);
+    mo.tension_min = tmin;
+    mo.tension_max = tmax;
+    visualization_msgs::MarkerArray m = makeMarkers(state, system_.environment, mo);
     for (auto& mk : m.markers) {
+      if (i > 0 && mk.ns == "scale") continue;
       mk.ns = name + "/" + mk.ns;
       all.markers.push_back(mk);
     }

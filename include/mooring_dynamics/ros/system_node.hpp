@@ -5,7 +5,8 @@
 // (default "world"), ~marker_scale (default 1.0).
 // Publications (latched), all in ~frame_id:
 //   ~lines/<line>/cable_state  mooring_dynamics/CableState of each line (line_name = <line>)
-//   ~markers                   visualization_msgs/MarkerArray of every line (namespaces <line>/...)
+//   ~markers                   visualization_msgs/MarkerArray of every line (namespaces <line>/...),
+//                              coloured on one tension scale (drawn with the first line)
 //   ~points/<point>/wrench     geometry_msgs/WrenchStamped: the lines' pull on each point [N]
 //                              (on an anchor or fixed point what it must resist; on a free point
 //                              what its buoyancy, drag and wind balance)
