@@ -271,3 +271,22 @@ TEST(System, PlanarSystemSolvesTheSameIn2DAnd3D) {
     EXPECT_NEAR(r2.lines[k].topTension(), r3.lines[k].topTension(), kSymmetryRelTol * r3.lines[k].topTension());
   EXPECT_GT(r3.points[0].x, 0.1);  // the current pushes the buoy toward +x
 }
+
+#include <filesystem>
+
+TEST(System, ShippedSystemConfigsLoad) {
+  // Every config/*.yaml with points and lines is a system file that loads and validates.
+  namespace fs = std::filesystem;
+  int n = 0;
+  for (const auto& entry : fs::directory_iterator("config")) {
+    if (entry.path().extension() != ".yaml" || !isSystemFile(entry.path().string())) continue;
+    ++n;
+    SCOPED_TRACE(entry.path().string());
+    SystemProblem s;
+    EXPECT_NO_THROW(s = loadSystemFromFile(entry.path().string()));
+    EXPECT_FALSE(s.name.empty());
+    EXPECT_FALSE(s.lines.empty());
+    EXPECT_EQ(s.validate(), "");
+  }
+  EXPECT_GE(n, 2);
+}
