@@ -67,17 +67,34 @@ void writeSystemJson(std::ostream& f, const core::SystemProblem& s, const core::
   f << "  ],\n  \"units\": {\"position\": \"m\", \"force\": \"N\", \"tension\": \"N\"}\n}\n";
 }
 
+/// Load a system file; false (and the message on err) when it is bad.
+bool loadSystem(const std::string& path, core::SystemProblem& s, std::ostream& err) {
+  try {
+    s = core::loadSystemFromFile(path);
+    return true;
+  } catch (const std::exception& e) {
+    err << kProg << ": error: " << e.what() << "\n";
+    return false;
+  }
+}
+
+/// Create the output directory; false (and the message on err) when that fails.
+bool makeOutputDir(const fs::path& dir, std::ostream& err) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir, ec)) {
+    err << kProg << ": error: cannot create output directory '" << dir.string() << "'\n";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int runSystemStatic(const std::string& path, bool want_table, std::size_t stride, double spacing_scale,
                     const std::string& out_dir, std::ostream& out, std::ostream& err) {
   core::SystemProblem s;
-  try {
-    s = core::loadSystemFromFile(path);
-  } catch (const std::exception& e) {
-    err << kProg << ": error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!loadSystem(path, s, err)) return kExitBadInput;
   for (auto& l : s.lines)
     for (auto& g : l.segments) g.spacing *= spacing_scale;
   core::SystemStaticResult r;
@@ -110,12 +127,7 @@ int runSystemStatic(const std::string& path, bool want_table, std::size_t stride
   }
   if (!out_dir.empty()) {
     const fs::path dir(out_dir);
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec || !fs::is_directory(dir, ec)) {
-      err << kProg << ": error: cannot create output directory '" << out_dir << "'\n";
-      return kExitIo;
-    }
+    if (!makeOutputDir(dir, err)) return kExitIo;
     if (!writeFile(dir / "system.json", [&](std::ostream& f) { writeSystemJson(f, s, r); }, err)) return kExitIo;
     for (std::size_t i = 0; i < r.lines.size(); ++i)
       if (!writeFile(dir / ("static_nodes_" + s.lines[i].name + ".csv"),
@@ -141,12 +153,7 @@ namespace detail {
 int runSystemDynamic(const std::string& path, const std::function<void(core::DynamicOptions&)>& overrides,
                      const std::string& out_dir, std::ostream& out, std::ostream& err) {
   core::SystemProblem s;
-  try {
-    s = core::loadSystemFromFile(path);
-  } catch (const std::exception& e) {
-    err << kProg << ": error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!loadSystem(path, s, err)) return kExitBadInput;
   overrides(s.dynamics);
   if (!(s.dynamics.duration > 0.0)) {
     err << kProg << ": error: " << path << ": dynamics.duration: not given; add `dynamics: {duration: 60, dt: 0.5}`"
@@ -203,12 +210,7 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
       << "\n";
   if (!out_dir.empty()) {
     const fs::path dir(out_dir);
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec || !fs::is_directory(dir, ec)) {
-      err << kProg << ": error: cannot create output directory '" << out_dir << "'\n";
-      return kExitIo;
-    }
+    if (!makeOutputDir(dir, err)) return kExitIo;
     const fs::path ts = dir / "system_timeseries.csv";
     if (!writeFile(ts,
                    [&](std::ostream& f) {

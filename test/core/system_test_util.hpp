@@ -2,6 +2,7 @@
 // test_system_dynamics.cpp.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include "mooring_dynamics/core/system.hpp"
@@ -34,6 +35,43 @@ inline SystemLine line(const std::string& name, std::size_t from, std::size_t to
   s.spacing = spacing;
   l.segments = {s};
   return l;
+}
+
+/// A surface buoy (4 m x 3 m cylinder, 5000 kg) held by three 300 m chain legs (300 N/m) to
+/// anchors 250 m away at 120 deg, in 100 m of water; legs meshed at `spacing` [m]. No current,
+/// no seabed damping, no buoy added mass: the tests add what they need.
+inline SystemProblem threeLegBuoy(double spacing) {
+  SystemProblem s;
+  s.name = "three-leg buoy mooring";
+  s.environment.depth = 100.0;
+  s.environment.seabed.stiffness = 1.0e5;
+  Material c;
+  c.name = "chain";
+  c.EA = 5.0e8;
+  c.EI = 10.0;
+  c.GJ = 1.0;
+  c.mass = 40.0;
+  c.added_mass = 5.0;
+  c.wet_weight = 300.0;
+  c.diameter = 0.08;
+  c.cdn = 2.4;
+  c.cdt = 1.15;
+  s.materials = {c};
+  SystemPoint b = point("buoy", SystemPoint::Type::Buoy, 0.0, 0.0, -1.0, true);
+  b.buoy.shape = SurfaceBuoy::Shape::Cylinder;
+  b.buoy.diameter = 4.0;
+  b.buoy.height = 3.0;
+  b.buoy.mass = 5000.0;
+  b.buoy.cd = 1.0;
+  s.points.push_back(b);
+  constexpr double kTwoPi = 6.283185307179586;
+  for (int k = 0; k < 3; ++k) {
+    const double a = kTwoPi * k / 3.0;
+    s.points.push_back(point("anchor" + std::to_string(k), SystemPoint::Type::Anchor, 250.0 * std::cos(a),
+                             250.0 * std::sin(a), -100.0));
+    s.lines.push_back(line("leg" + std::to_string(k), static_cast<std::size_t>(k + 1), 0, 300.0, spacing));
+  }
+  return s;
 }
 
 }  // namespace testing_util

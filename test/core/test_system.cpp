@@ -42,27 +42,10 @@ Material chain() {
 }
 
 
-/// A surface buoy held by three 300 m chain legs to anchors 250 m away at 120 deg, 100 m deep.
+/// The three-leg buoy of system_test_util.hpp at 5 m spacing, in a uniform current [m/s] toward +x.
 SystemProblem threeLeg(double current) {
-  SystemProblem s;
-  s.name = "three-leg buoy mooring";
-  s.environment.depth = 100.0;
-  s.environment.seabed.stiffness = 1.0e5;
+  SystemProblem s = testing_util::threeLegBuoy(5.0);
   if (current > 0.0) s.environment.current = {{0.0, current, 0.0}};
-  s.materials = {chain()};
-  SystemPoint b = point("buoy", SystemPoint::Type::Buoy, 0.0, 0.0, -1.0);
-  b.buoy.shape = SurfaceBuoy::Shape::Cylinder;
-  b.buoy.diameter = 4.0;
-  b.buoy.height = 3.0;
-  b.buoy.mass = 5000.0;
-  b.buoy.cd = 1.0;
-  s.points.push_back(b);
-  for (int k = 0; k < 3; ++k) {
-    const double a = 2.0 * kPi * k / 3.0;
-    s.points.push_back(point("anchor" + std::to_string(k), SystemPoint::Type::Anchor, 250.0 * std::cos(a),
-                             250.0 * std::sin(a), -100.0));
-    s.lines.push_back(line("leg" + std::to_string(k), static_cast<std::size_t>(k + 1), 0, 300.0, 5.0));
-  }
   return s;
 }
 

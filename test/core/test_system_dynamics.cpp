@@ -81,36 +81,12 @@ TEST(SystemDynamics, BodyOnAnElasticTetherHeavesAtSqrtKOverM) {
 }
 
 namespace {
+/// The three-leg buoy of system_test_util.hpp at 10 m spacing, with seabed damping and the buoy's
+/// added mass (dynamics).
 SystemProblem threeLeg() {
-  SystemProblem s;
-  s.environment.depth = 100.0;
-  s.environment.seabed.stiffness = 1.0e5;
+  SystemProblem s = testing_util::threeLegBuoy(10.0);
   s.environment.seabed.damping = 1.0e3;
-  Material c;
-  c.EA = 5.0e8;
-  c.EI = 10.0;
-  c.GJ = 1.0;
-  c.mass = 40.0;
-  c.added_mass = 5.0;
-  c.wet_weight = 300.0;
-  c.diameter = 0.08;
-  c.cdn = 2.4;
-  c.cdt = 1.15;
-  s.materials = {c};
-  SystemPoint b = point("buoy", SystemPoint::Type::Buoy, 0.0, 0.0, -1.0, true);
-  b.buoy.shape = SurfaceBuoy::Shape::Cylinder;
-  b.buoy.diameter = 4.0;
-  b.buoy.height = 3.0;
-  b.buoy.mass = 5000.0;
-  b.buoy.added_mass = 3000.0;
-  b.buoy.cd = 1.0;
-  s.points.push_back(b);
-  for (int k = 0; k < 3; ++k) {
-    const double a = 2.0 * kPi * k / 3.0;
-    s.points.push_back(point("anchor" + std::to_string(k), SystemPoint::Type::Anchor, 250.0 * std::cos(a),
-                             250.0 * std::sin(a), -100.0));
-    s.lines.push_back(line("leg" + std::to_string(k), static_cast<std::size_t>(k + 1), 0, 300.0, 10.0));
-  }
+  s.points[0].buoy.added_mass = 3000.0;
   return s;
 }
 }  // namespace
