@@ -48,7 +48,14 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
   // slowly, assemble afresh.
   bool fresh = !(options.reuse_jacobian && J.factorized());
 
-  for (int k = 0; k < options.max_iterations; ++k) {
+  // Modified Newton bookkeeping: the iterate before the last update and the state of the
+  // iteration there, to go back to when that update was made with a kept Jacobian that turns
+  // out not to contract (the update itself may then have gone the wrong way).
+  Eigen::VectorXd Y_before;
+  double sigma_before = 0.0, mu_before = mu;
+  bool last_kept = false;
+  int k = 0;  // accepted updates
+  while (k < options.max_iterations) {
     const bool assembled = fresh;
     if (fresh) {
       // Assemble residual and Jacobian at the current iterate.
@@ -60,6 +67,15 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       ++counts.residuals;
     }
     if (!R.allFinite()) {
+      if (!assembled && last_kept) {  // a kept Jacobian's update went bad: back, and assemble
+        Y = Y_before;
+        sigma_prev = sigma_before;
+        mu = mu_before;
+        --k;
+        last_kept = false;
+        fresh = true;
+        continue;
+      }
       summary.iterations = k;
       summary.message = "residual is not finite at iteration " + std::to_string(k);
       if (work) *work = counts;
@@ -93,7 +109,16 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
     // Error measure and adaptive relaxation (eqs. 39-41).
     const double sigma = scaledUpdate(inv_chi, dY, &worst);
     if (options.reuse_jacobian && !assembled && k > 0 && sigma > options.reuse_rate * sigma_prev) {
-      // The kept Jacobian no longer contracts fast enough: redo this update with a fresh one.
+      // The kept Jacobian no longer contracts fast enough: assemble afresh and redo the update.
+      // When it made the last update too and the iteration grew (a Jacobian kept from an
+      // earlier call can be far off), that update is suspect: redo it from the iterate before.
+      if (last_kept && sigma > sigma_prev) {
+        Y = Y_before;
+        sigma_prev = sigma_before;
+        mu = mu_before;
+        --k;
+        last_kept = false;
+      }
       fresh = true;
       continue;
     }
@@ -102,12 +127,19 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       else mu *= options.R2;
       mu = std::clamp(mu, options.mu0 / 1000.0, options.mu0);
     }
+    if (options.reuse_jacobian) {
+      Y_before = Y;
+      sigma_before = sigma_prev;
+      mu_before = mu;
+      last_kept = !assembled;
+    }
     sigma_prev = sigma;
     if (std::getenv("MD_NEWTON_TRACE"))
       std::fprintf(stderr, "newton %d sigma %.3e mu %.3e worst %s dY %.3e%s\n", k, sigma, mu,
                    system.describe(worst).c_str(), dY[worst], assembled ? "" : " (kept Jacobian)");
     Y += std::min(mu, system.stepLimit(dY)) * dY;  // eq. 38
-    summary.iterations = k + 1;
+    ++k;
+    summary.iterations = k;
     summary.error = sigma;
     summary.relaxation = mu;
     if (sigma < options.tolerance) {

@@ -399,37 +399,169 @@ void WaveField::acceleration(double x, double y, double z, double t, double& ax,
 // ---------------------------------------------------------------------------------------------
 // WaveVelocityCache
 
+namespace {
+
+// The component sums are compiled for the baseline instruction set and with AVX2 (function
+// multiversioning, as the elimination kernels of banded_matrix.cpp); both do the same
+// operations in the same order.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(MD_NO_MULTIVERSION)
+#define MD_WAVE_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define MD_WAVE_SIMD_CLONES
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+typedef double Lane __attribute__((vector_size(32), aligned(8), may_alias));  // four components
+#define MD_LOAD(p) (*reinterpret_cast<const Lane*>(p))
+inline double total(const Lane& v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+constexpr std::size_t kLanes = 4;
+#else
+typedef double Lane;
+#define MD_LOAD(p) (*(p))
+inline double total(const Lane& v) { return v; }
+constexpr std::size_t kLanes = 1;
+#endif
+
+/// Even and odd parts of the Taylor series of e^{u} (|u| <= kTaylorRadius, terms to u^14):
+/// cos, sin of u are (even(-u^2), odd(-u^2)) and e^{+-u} = even(u^2) +- odd(u^2).
+template <class T>
+inline void taylorParts(const T& u, const T& u2, T& even, T& odd) {
+  even = 1.0 + u2 * (1.0 / 2 + u2 * (1.0 / 24 + u2 * (1.0 / 720 + u2 * (1.0 / 40320 + u2 * (1.0 / 3628800 +
+         u2 * (1.0 / 479001600 + u2 * (1.0 / 87178291200.0)))))));
+  odd = u * (1.0 + u2 * (1.0 / 6 + u2 * (1.0 / 120 + u2 * (1.0 / 5040 + u2 * (1.0 / 362880 + u2 * (1.0 / 39916800 +
+        u2 * (1.0 / 6227020800.0)))))));
+}
+
+/// The twelve sums (WaveVelocityCache's order) over components [0, n), n a multiple of kLanes,
+/// for a point displaced by (dx, dz) from its reference.
+struct SumInputs {
+  const double *k, *kx, *cos_a, *sin_a, *cos_b, *sin_b, *ep, *em;
+  const double* cx[6];
+  const double* cz[6];
+};
+MD_WAVE_SIMD_CLONES void componentSums(const SumInputs& in, std::size_t n, double dx, double dz, double* out) {
+  Lane sx[6], sz[6];
+  for (int q = 0; q < 6; ++q) sx[q] = sz[q] = MD_LOAD(in.k) * 0.0;
+  for (std::size_t i = 0; i < n; i += kLanes) {
+    // e^{+-k dz}: the exponentials E+- carried from the reference elevation.
+    const Lane u = MD_LOAD(in.k + i) * dz;
+    Lane ev, od;
+    taylorParts(u, u * u, ev, od);
+    const Lane Ep = MD_LOAD(in.ep + i) * (ev + od), Em = MD_LOAD(in.em + i) * (ev - od);
+    const Lane ch = Ep + Em, sh = Ep - Em;
+    // cos, sin of kx dx: the phase B carried from the reference abscissa, then A added.
+    const Lane d = MD_LOAD(in.kx + i) * dx;
+    Lane cd, sd;
+    taylorParts(d, -(d * d), cd, sd);
+    const Lane cb = MD_LOAD(in.cos_b + i), sb = MD_LOAD(in.sin_b + i);
+    const Lane cbx = cb * cd - sb * sd, sbx = sb * cd + cb * sd;
+    const Lane ca = MD_LOAD(in.cos_a + i), sa = MD_LOAD(in.sin_a + i);
+    const Lane cth = cbx * ca - sbx * sa, sth = sbx * ca + cbx * sa;
+    const Lane p1 = ch * cth, p2 = ch * sth, p3 = sh * cth, p4 = sh * sth;
+    // vx ~ ch cos(th), vz ~ sh sin(th); d/dx turns cos into -sin (times kx), d/dz ch into sh.
+    sx[0] += MD_LOAD(in.cx[0] + i) * p1;
+    sx[1] -= MD_LOAD(in.cx[1] + i) * p2;
+    sx[2] += MD_LOAD(in.cx[2] + i) * p3;
+    sx[3] -= MD_LOAD(in.cx[3] + i) * p1;
+    sx[4] -= MD_LOAD(in.cx[4] + i) * p4;
+    sx[5] += MD_LOAD(in.cx[5] + i) * p1;
+    sz[0] += MD_LOAD(in.cz[0] + i) * p4;
+    sz[1] += MD_LOAD(in.cz[1] + i) * p3;
+    sz[2] += MD_LOAD(in.cz[2] + i) * p2;
+    sz[3] -= MD_LOAD(in.cz[3] + i) * p4;
+    sz[4] += MD_LOAD(in.cz[4] + i) * p1;
+    sz[5] += MD_LOAD(in.cz[5] + i) * p4;
+  }
+  for (int q = 0; q < 6; ++q) {
+    out[q] = total(sx[q]);
+    out[6 + q] = total(sz[q]);
+  }
+}
+
+#undef MD_LOAD
+
+}  // namespace
+
 WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points) : field_(field) {
   if (empty()) return;
   const WaveField& f = *field_;
   nc_ = f.components_.size();
-  // e^{-k(z+2h)} / e^{kz} = e^{-2k(z+h)} < 1e-17 (below half an ulp of e^{kz}) when k (z + h) > 19.6.
-  constexpr double kHalfUlpExponent = 19.6;
+  np_ = (nc_ + kLanes - 1) / kLanes * kLanes;
+  const double h = f.depth_;
+  // One component's constants before sorting: the depth factors as A (E+ +- E-) with
+  // E+- = e^{+-k (z + o+-)}: deep water (1 - e^{-2kh})^{-1} (e^{kz} +- e^{-k(z + 2h)}), else
+  // (2 sinh kh)^{-1} (e^{k(z + h)} +- e^{-k(z + h)}); every exponent stays in range.
+  struct Comp {
+    double k, kx, omega, phase, aw, cd, A, op, om, z_skip, coth;
+  };
+  std::vector<Comp> comps;
   for (std::size_t i = 0; i < nc_; ++i) {
     const WaveComponent& c = f.components_[i];
     const WaveField::Kinematics& q = f.kin_[i];
-    Comp m;
+    Comp m{};
     m.k = c.k;
+    m.kx = c.k * q.cd;
     m.omega = c.omega;
     m.phase = c.phase;
     m.aw = q.aw;
     m.cd = q.cd;
-    m.kx = c.k * q.cd;
-    m.deep = q.deep;
-    m.inv_den = 1.0 / q.den;
-    m.e2kh = q.e2kh;
-    m.z_e2 = q.deep ? -f.depth_ + kHalfUlpExponent / c.k : 0.0;
-    m.z_skip = q.deep ? q.z_skip : -std::numeric_limits<double>::infinity();
-    m.hyperbolic = q.den > 0.0;
-    kx_max_ = std::max(kx_max_, std::abs(m.kx));
-    comps_.push_back(m);
+    if (q.deep) {
+      m.A = 1.0 / q.den;
+      m.op = 0.0;
+      m.om = 2.0 * h;
+      m.z_skip = q.z_skip;
+      m.coth = (1.0 + q.e2kh) / q.den;
+    } else if (q.den > 0.0) {
+      m.A = 0.5 / q.den;
+      m.op = m.om = h;
+      m.z_skip = -std::numeric_limits<double>::infinity();
+      m.coth = 1.0 / std::tanh(c.k * h);
+    } else {  // k h = 0: no velocity (a omega = 0)
+      m.A = 0.0;
+      m.op = m.om = h;
+      m.z_skip = -std::numeric_limits<double>::infinity();
+      m.coth = 0.0;
+    }
+    comps.push_back(m);
   }
-  std::stable_sort(comps_.begin(), comps_.end(), [](const Comp& a, const Comp& b) { return a.z_skip < b.z_skip; });
-  cos_a_.assign(nc_, 1.0);
-  sin_a_.assign(nc_, 0.0);
+  std::stable_sort(comps.begin(), comps.end(), [](const Comp& a, const Comp& b) { return a.z_skip < b.z_skip; });
+  // Bound on the velocity's third derivatives (linearRadius).
+  double g3 = 0.0;
+  for (const Comp& c : comps) g3 += std::abs(c.aw) * c.k * c.k * c.k * c.coth;
+  const double third = 2.0 * std::sqrt(2.0) * g3 / 6.0;
+  lin_radius_ = third > 0.0 ? std::cbrt(kLinearTolerance / third) : 0.0;
+  // Structure of arrays, padded with zero terms (skipped by no point: z_skip = +inf).
+  for (auto* v : {&k_, &kx_, &op_, &om_, &omega_, &phase_}) v->assign(np_, 0.0);
+  z_skip_.assign(np_, std::numeric_limits<double>::infinity());
+  for (int q = 0; q < 6; ++q) {
+    cx_[q].assign(np_, 0.0);
+    cz_[q].assign(np_, 0.0);
+  }
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const Comp& c = comps[i];
+    k_[i] = c.k;
+    kx_[i] = c.kx;
+    op_[i] = c.op;
+    om_[i] = c.om;
+    omega_[i] = c.omega;
+    phase_[i] = c.phase;
+    z_skip_[i] = c.z_skip;
+    kx_max_ = std::max(kx_max_, std::abs(c.kx));
+    k_max_ = std::max(k_max_, c.k);
+    const double ax = c.A * c.aw * c.cd, az = c.A * c.aw;
+    const double pw[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};  // powers of kx, k
+    for (int q = 0; q < 6; ++q) {
+      const double f_q = std::pow(c.kx, pw[q][0]) * std::pow(c.k, pw[q][1]);
+      cx_[q][i] = ax * f_q;
+      cz_[q][i] = az * f_q;
+    }
+  }
+  exact_.assign(points, Exact{});
+  cos_a_.assign(np_, 1.0);
+  sin_a_.assign(np_, 0.0);
   x_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
-  cos_b_.assign(points * nc_, 1.0);
-  sin_b_.assign(points * nc_, 0.0);
+  z_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
+  for (auto* v : {&cos_b_, &sin_b_, &ep_, &em_}) v->assign(points * np_, 0.0);
 }
 
 void WaveVelocityCache::setTime(double t) {
@@ -438,7 +570,7 @@ void WaveVelocityCache::setTime(double t) {
   have_time_ = true;
   ramp_ = field_->rampFactor(t);
   for (std::size_t i = 0; i < nc_; ++i) {
-    const double a = comps_[i].phase - comps_[i].omega * t;
+    const double a = phase_[i] - omega_[i] * t;
     cos_a_[i] = std::cos(a);
     sin_a_[i] = std::sin(a);
   }
@@ -450,53 +582,59 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
   const WaveField& f = *field_;
   const double zc = std::min(0.0, std::max(-f.depth_, z));
   if (zc < f.z_all_negligible_) return;
-  double* cb = cos_b_.data() + p * nc_;
-  double* sb = sin_b_.data() + p * nc_;
-  if (!(std::abs(x - x_ref_[p]) * kx_max_ <= kTaylorRadius)) {  // also when x_ref is NaN
+  Exact& ex = exact_[p];
+  const bool inside = z < 0.0 && z > -f.depth_;  // not clamped: the expansion holds
+  if (inside && ex.valid && ex.t == t_) {
+    const double dx = x - ex.x, dz = z - ex.z;
+    if (dx * dx + dz * dz <= lin_radius_ * lin_radius_) {  // linearRadius: second-order Taylor
+      auto taylor = [dx, dz](const double* v) {
+        return v[0] + v[1] * dx + v[2] * dz + 0.5 * v[3] * dx * dx + v[4] * dx * dz + 0.5 * v[5] * dz * dz;
+      };
+      vx = taylor(ex.vx);
+      vz = taylor(ex.vz);
+      return;
+    }
+  }
+  const std::size_t off = p * np_;
+  double* cb = cos_b_.data() + off;
+  double* sb = sin_b_.data() + off;
+  double* ep = ep_.data() + off;
+  double* em = em_.data() + off;
+  // Refresh the reference when the Taylor series would carry too far (also when it is NaN).
+  if (!(std::abs(x - x_ref_[p]) * kx_max_ <= kTaylorRadius && std::abs(zc - z_ref_[p]) * k_max_ <= kTaylorRadius)) {
     x_ref_[p] = x;
+    z_ref_[p] = zc;
     for (std::size_t i = 0; i < nc_; ++i) {
-      cb[i] = std::cos(comps_[i].kx * x);
-      sb[i] = std::sin(comps_[i].kx * x);
+      cb[i] = std::cos(kx_[i] * x);
+      sb[i] = std::sin(kx_[i] * x);
+      ep[i] = std::exp(k_[i] * (zc + op_[i]));
+      em[i] = std::exp(-k_[i] * (zc + om_[i]));
     }
   }
-  const double dx = x - x_ref_[p];
-  double sx = 0.0, sz = 0.0;  // local sums (the outputs could alias the tables)
-  for (std::size_t i = 0; i < nc_; ++i) {
-    const Comp& c = comps_[i];
-    double ch, sh;
-    if (c.deep) {
-      // As WaveField::velocity: negligible components of deep water are left out (all the
-      // following ones are too: sorted by z_skip).
-      if (zc < c.z_skip) break;
-      const double e1 = std::exp(c.k * zc);
-      if (c.aw * e1 < kNegligibleVelocity) continue;
-      const double e2 = zc > c.z_e2 ? 0.0 : c.e2kh / e1;
-      ch = (e1 + e2) * c.inv_den;
-      sh = (e1 - e2) * c.inv_den;
-    } else if (c.hyperbolic) {
-      const double e = std::exp(c.k * (zc + f.depth_));
-      const double ei = 1.0 / e;
-      ch = 0.5 * (e + ei) * c.inv_den;
-      sh = 0.5 * (e - ei) * c.inv_den;
-    } else {
-      depthFactors(c.k, zc, f.depth_, ch, sh);
-    }
-    // cos, sin of d = kx (x - x_ref), |d| <= kTaylorRadius, by their Taylor series (Horner).
-    const double d = c.kx * dx, d2 = d * d;
-    const double cd =
-        1.0 + d2 * (-1.0 / 2 + d2 * (1.0 / 24 + d2 * (-1.0 / 720 + d2 * (1.0 / 40320 + d2 * (-1.0 / 3628800 +
-        d2 * (1.0 / 479001600 + d2 * (-1.0 / 87178291200.0)))))));
-    const double sd =
-        d * (1.0 + d2 * (-1.0 / 6 + d2 * (1.0 / 120 + d2 * (-1.0 / 5040 + d2 * (1.0 / 362880 + d2 * (-1.0 / 39916800 +
-        d2 * (1.0 / 6227020800.0)))))));
-    const double cbx = cb[i] * cd - sb[i] * sd, sbx = sb[i] * cd + cb[i] * sd;  // B at x
-    const double cth = cbx * cos_a_[i] - sbx * sin_a_[i];                      // B + A
-    const double sth = sbx * cos_a_[i] + cbx * sin_a_[i];
-    sx += c.aw * ch * cth * c.cd;
-    sz += c.aw * sh * sth;
+  // The components this elevation sees (a prefix: sorted by z_skip), whole lanes of them (the
+  // extra ones, below their skip depth, add less than 1e-12 m/s each).
+  const std::size_t seen =
+      static_cast<std::size_t>(std::upper_bound(z_skip_.begin(), z_skip_.begin() + static_cast<std::ptrdiff_t>(nc_), zc) -
+                               z_skip_.begin());
+  const std::size_t n = (seen + kLanes - 1) / kLanes * kLanes;
+  SumInputs in{k_.data(), kx_.data(), cos_a_.data(), sin_a_.data(), cb, sb, ep, em, {}, {}};
+  for (int q = 0; q < 6; ++q) {
+    in.cx[q] = cx_[q].data();
+    in.cz[q] = cz_[q].data();
   }
-  vx = sx * ramp_;
-  vz = sz * ramp_;
+  double sums[12];
+  componentSums(in, n, x - x_ref_[p], zc - z_ref_[p], sums);
+  vx = sums[0] * ramp_;
+  vz = sums[6] * ramp_;
+  ex.valid = inside;
+  if (!inside) return;
+  ex.t = t_;
+  ex.x = x;
+  ex.z = z;
+  for (int q = 0; q < 6; ++q) {
+    ex.vx[q] = sums[q] * ramp_;
+    ex.vz[q] = sums[6 + q] * ramp_;
+  }
 }
 
 }  // namespace core

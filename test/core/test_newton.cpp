@@ -377,3 +377,29 @@ TEST(Newton, ModifiedNewtonReachesTheSameRootWithFewerJacobians) {
   EXPECT_EQ(wk2.assemblies, 0);
   EXPECT_LT((Y2 - root).cwiseAbs().maxCoeff(), kRootTol);
 }
+
+TEST(Newton, KeptJacobianWhoseUpdateDivergesIsUndone) {
+  // A factorization kept from another call (slope 0.1) makes the first update of the next call
+  // (slope 1) ten times too long: the iteration grows, so that update is undone and redone from
+  // the start with a fresh Jacobian, which then solves the linear problem exactly.
+  Scalar shallow([](double x) { return 0.1 * (x - 2.0); }, [](double) { return 0.1; });
+  Scalar steep([](double x) { return x - 0.5; }, [](double) { return 1.0; });
+  NewtonOptions kept;
+  kept.reuse_jacobian = true;
+  kept.adaptive = false;
+  BandedMatrix ws;
+  Eigen::VectorXd Y(1);
+  Y[0] = 0.0;
+  ASSERT_TRUE(solveNewton(shallow, Y, kept, &ws).converged);
+  Y[0] = 1.0;
+  NewtonWork w;
+  const SolverSummary s = solveNewton(steep, Y, kept, &ws, &w);
+  ASSERT_TRUE(s.converged) << s.message;
+  EXPECT_DOUBLE_EQ(Y[0], 0.5);
+  // Iterates: the start, the kept update's overshoot (1 - 0.5 / 0.1), the start again (undone),
+  // the root.
+  const std::vector<double> expected = {1.0, -4.0, 1.0, 0.5};
+  EXPECT_EQ(steep.iterates, expected);
+  EXPECT_EQ(w.assemblies, 1);
+  EXPECT_EQ(s.iterations, 2);  // the undone update does not count
+}

@@ -464,3 +464,57 @@ TEST(Waves, VelocityCacheMatchesDirectEvaluation) {
   WaveVelocityCache none(nullptr, 3);
   EXPECT_TRUE(none.empty());
 }
+
+// Within linearRadius of a point's last exact evaluation at the same time the cache returns the
+// first-order expansion, whose error is bounded by WaveVelocityCache::kLinearTolerance; beyond
+// it, or at another time, the exact sum. Both depth branches, points below, at and above the
+// surface, displacements in all directions.
+TEST(Waves, VelocityCacheLinearizesWithinItsRadius) {
+  constexpr double kRoundTol = 1e-12;  // of the largest velocity: reordered rounding only
+  for (double depth : {1860.0, 60.0}) {
+    WaveSpec spec;
+    spec.type = WaveSpec::Type::PiersonMoskowitz;
+    spec.hs = 9.8;
+    spec.tp = 16.0;
+    spec.components = 400;
+    spec.direction = 0.3;
+    const WaveField field(spec, depth, 9.81);
+    const double z0s[] = {-0.3, -12.0, -150.0, 0.0};
+    WaveVelocityCache cache(&field, 4);
+    const double r = cache.linearRadius();
+    // The radius is what makes the linearization pay: a Newton iteration moves a node by less.
+    EXPECT_GT(r, 1e-4) << "depth " << depth;
+    EXPECT_LT(r, 1.0) << "depth " << depth;
+    int linear = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+      const double t = 3.1 + 0.5 * trial;
+      cache.setTime(t);
+      for (std::size_t p = 0; p < 4; ++p) {
+        const double x0 = 20.0 * p + 0.7 * trial, z0 = z0s[p];
+        double vx, vz, ex, ey, ez;
+        cache.velocity(p, x0, z0, vx, vz);  // exact: first evaluation at this time
+        field.velocity(x0, 0.0, z0, t, ex, ey, ez);
+        const double scale = std::max({1e-3, std::abs(ex), std::abs(ez)});
+        EXPECT_NEAR(vx, ex, kRoundTol * scale);
+        EXPECT_NEAR(vz, ez, kRoundTol * scale);
+        // A displacement of 0.9 r in direction theta: linearized, within the bound.
+        const double th = 0.37 * trial + 1.3 * p, d = 0.9 * r;
+        const double x1 = x0 + d * std::cos(th), z1 = z0 + d * std::sin(th);
+        cache.velocity(p, x1, z1, vx, vz);
+        field.velocity(x1, 0.0, z1, t, ex, ey, ez);
+        EXPECT_NEAR(vx, ex, WaveVelocityCache::kLinearTolerance + kRoundTol * scale) << "depth " << depth << " p " << p;
+        EXPECT_NEAR(vz, ez, WaveVelocityCache::kLinearTolerance + kRoundTol * scale) << "depth " << depth << " p " << p;
+        if (std::abs(vx - ex) > kRoundTol * scale || std::abs(vz - ez) > kRoundTol * scale) ++linear;
+        // Beyond the radius (from the last exact point x0, z0): exact again.
+        const double x2 = x0 + 3.0 * r * std::cos(th), z2 = z0 + 3.0 * r * std::sin(th);
+        cache.velocity(p, x2, z2, vx, vz);
+        field.velocity(x2, 0.0, z2, t, ex, ey, ez);
+        EXPECT_NEAR(vx, ex, kRoundTol * scale);
+        EXPECT_NEAR(vz, ez, kRoundTol * scale);
+      }
+    }
+    // The expansion was used (it differs from the exact sum by more than rounding somewhere).
+    EXPECT_GT(linear, 0) << "depth " << depth;
+    std::printf("depth %.0f m: linear radius %.3g m\n", depth, r);
+  }
+}

@@ -84,11 +84,15 @@ class WaveField {
 /// that move little between evaluations, such as the nodes of a line over the Newton iterations
 /// of its time steps. The phase of component i at point x and time t is split as
 /// B_i + A_i with A_i = phase_i - omega_i t (cos, sin once per time for all points) and
-/// B_i = k_i cos(theta_i) x, whose cos and sin are kept per point at a reference abscissa and
-/// carried to x by the angle-addition formulas with a Taylor series of the small difference
-/// (refreshed when |k_i cos(theta_i) (x - x_ref)| would exceed kTaylorRadius). The value is
-/// WaveField::velocity(x, 0, z, t) up to rounding: one sincos per component and time instead
-/// of one per component, point and evaluation.
+/// B_i = k_i cos(theta_i) x; the depth factors cosh, sinh of k_i (z + h) / sinh(k_i h) are sums
+/// of two exponentials E+-_i = e^{+-k_i (z + o+-_i)}. Per point, cos and sin of B_i and E+-_i are
+/// kept at a reference position and carried to (x, z) by the angle-addition formulas and
+/// e^{+-k_i dz}, with Taylor series of the small differences (refreshed when |k_i cos(theta_i)
+/// dx| or |k_i dz| would exceed kTaylorRadius). The value is WaveField::velocity(x, 0, z, t) up
+/// to rounding, with no transcendental function per component, point and evaluation, and the
+/// sum over the components is taken four components at a time (SIMD where the compiler has it).
+/// Near a point's last exact evaluation at the same time the cache expands instead (see
+/// linearRadius).
 class WaveVelocityCache {
  public:
   WaveVelocityCache() = default;
@@ -100,35 +104,53 @@ class WaveVelocityCache {
   /// (vx, vz) at point i at (x, 0, z) and the time of setTime [m/s].
   void velocity(std::size_t i, double x, double z, double& vx, double& vz);
 
-  /// Largest phase difference carried by the Taylor series [rad]: the terms left out are below
-  /// 0.2^15 / 15! ~ 3e-23.
+  /// Largest phase difference or exponent carried by the Taylor series [rad]: the terms left
+  /// out are below 0.2^15 / 15! ~ 3e-23.
   static constexpr double kTaylorRadius = 0.2;
+  /// Bound on the error of the expanded velocity (see linearRadius) [m/s]: far below the drag
+  /// velocities of a cable and below the dynamic solver's Newton tolerance on velocities.
+  static constexpr double kLinearTolerance = 1e-7;
+  /// Distance [m] from a point's last exact evaluation at the same time within which velocity()
+  /// returns the second-order Taylor expansion about it (both points inside the water column,
+  /// below the surface): the Newton iterations of a time step move a node by millimetres, and
+  /// the sum over the components is then taken once per step instead of once per iteration.
+  /// Each derivative of a component brings a factor of at most k_i (|k_i cos(theta_i)| <= k_i,
+  /// the depth factors are at most coth(k_i h)), so along any unit direction the third
+  /// derivatives are below 2^{3/2} G3 with G3 = sum_i a_i omega_i k_i^3 coth(k_i h), and the
+  /// remainder over a distance d below 2^{3/2} G3 d^3 / 6 <= kLinearTolerance.
+  double linearRadius() const { return lin_radius_; }
 
  private:
-  /// One component's constants, in the cache's order (increasing skip depth z_skip, so that
-  /// the components a point at elevation z sees are a prefix of the list).
-  struct Comp {
-    double k = 0.0, omega = 0.0, phase = 0.0;
-    double aw = 0.0;          ///< amplitude * omega
-    double cd = 1.0;          ///< cos(theta)
-    double kx = 0.0;          ///< k cos(theta)
-    bool deep = false;
-    double inv_den = 1.0;     ///< 1 / (1 - e^{-2kh}) (deep) or 1 / sinh(kh)
-    double e2kh = 0.0;        ///< deep: e^{-2kh}
-    double z_e2 = 0.0;        ///< deep: above this elevation e^{-k(z+2h)} < 1e-17 e^{kz}
-    double z_skip = 0.0;      ///< deep: below it the component is negligible; -inf otherwise
-    bool hyperbolic = true;   ///< not deep: sinh(kh) > 0 (else WaveField's depthFactors)
-  };
   const WaveField* field_ = nullptr;
-  std::size_t nc_ = 0;
+  std::size_t nc_ = 0;                  ///< components
+  std::size_t np_ = 0;                  ///< components padded to a multiple of 4 (zero terms)
   double t_ = 0.0;
   bool have_time_ = false;
   double ramp_ = 1.0;
-  double kx_max_ = 0.0;                 ///< max_i |k_i cos(theta_i)| [rad/m]
-  std::vector<Comp> comps_;
+  double kx_max_ = 0.0, k_max_ = 0.0;   ///< max_i |k_i cos(theta_i)|, max_i k_i [rad/m]
+  /// Per component, in increasing skip depth (the components a point at elevation z sees are
+  /// a prefix; below z_skip a deep component's velocity is under 1e-12 m/s): k, k cos(theta),
+  /// the offsets o+- of the exponentials, and the coefficients of the six sums of vx (value,
+  /// d/dx, d/dz, d2/dx2, d2/dxdz, d2/dz2) and of vz, which fold in a omega, cos(theta), the
+  /// powers of k and kx and the depth factors' denominator.
+  std::vector<double> k_, kx_, op_, om_, z_skip_, omega_, phase_;
+  std::vector<double> cx_[6], cz_[6];
   std::vector<double> cos_a_, sin_a_;   ///< of A_i at the current time
-  std::vector<double> x_ref_;           ///< per point; NaN until first used
-  std::vector<double> cos_b_, sin_b_;   ///< per point and component, of B_i at x_ref
+  /// Per point: the reference position (NaN until first used) and, per component, cos and sin
+  /// of B_i and E+, E- there.
+  std::vector<double> x_ref_, z_ref_;
+  std::vector<double> cos_b_, sin_b_, ep_, em_;
+  /// Last exact evaluation of each point inside the water column: time, position, and the
+  /// velocity with its first and second derivatives there: for vx then vz, the value, d/dx,
+  /// d/dz, d2/dx2, d2/dxdz, d2/dz2 [m/s, 1/s, 1/(m s)].
+  struct Exact {
+    double t = 0.0, x = 0.0, z = 0.0;
+    double vx[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    double vz[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    bool valid = false;
+  };
+  std::vector<Exact> exact_;
+  double lin_radius_ = 0.0;             ///< linearRadius() [m]
 };
 
 /// Wavenumber k [rad/m] solving omega^2 = g k tanh(k h) (Newton iteration; deep-water start).
