@@ -127,10 +127,10 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       else mu *= options.R2;
       mu = std::clamp(mu, options.mu0 / 1000.0, options.mu0);
     }
+    sigma_before = sigma_prev;
+    mu_before = mu;
     if (options.reuse_jacobian) {
       Y_before = Y;
-      sigma_before = sigma_prev;
-      mu_before = mu;
       last_kept = !assembled;
     }
     sigma_prev = sigma;
@@ -142,7 +142,12 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
     summary.iterations = k;
     summary.error = sigma;
     summary.relaxation = mu;
-    if (sigma < options.tolerance) {
+    const double theta = k > 1 ? sigma / sigma_before : 1.0;  // sigma_before: the update before
+    // (Updates with a fresh Jacobian only: Newton's quadratic contraction makes the estimate
+    // an upper bound, the linear one of a kept Jacobian does not.)
+    const bool estimated = options.estimate_convergence && assembled && k > 1 && theta < options.estimate_max_theta &&
+                           theta / (1.0 - theta) * sigma < options.tolerance;
+    if (sigma < options.tolerance || estimated) {
       summary.converged = true;
       std::ostringstream os;
       os << "converged in " << summary.iterations << " iterations (sigma = " << sigma << ")";

@@ -403,3 +403,26 @@ TEST(Newton, KeptJacobianWhoseUpdateDivergesIsUndone) {
   EXPECT_EQ(w.assemblies, 1);
   EXPECT_EQ(s.iterations, 2);  // the undone update does not count
 }
+
+TEST(Newton, EstimatedConvergenceSavesTheConfirmingIteration) {
+  // With estimate_convergence the iteration stops once theta / (1 - theta) sigma_k is below the
+  // tolerance: one update earlier than eq. 39 alone on this quadratically converging problem,
+  // and the iterate is still within the tolerance of the root (the measure of eq. 39, chi = 1).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd root(40);
+  for (int i = 0; i < root.size(); ++i) root[i] = u(rng);
+  CubicChain sys(root);
+  NewtonOptions plain;
+  plain.tolerance = 1e-8;
+  NewtonOptions est = plain;
+  est.estimate_convergence = true;
+  Eigen::VectorXd Yp = Eigen::VectorXd::Constant(root.size(), 0.2), Ye = Yp;
+  const SolverSummary sp = solveNewton(sys, Yp, plain);
+  const SolverSummary se = solveNewton(sys, Ye, est);
+  ASSERT_TRUE(sp.converged);
+  ASSERT_TRUE(se.converged);
+  EXPECT_EQ(se.iterations, sp.iterations - 1);
+  EXPECT_LT((Ye - root).cwiseAbs().mean(), plain.tolerance);
+  EXPECT_GT(se.error, plain.tolerance);  // stopped on the estimate, not on the last update
+}

@@ -60,6 +60,15 @@ struct NewtonOptions {
   /// 17 Jacobians (3.9 s), 0.15 2936 with 36 (3.2 s), 0.03 2494 with 136 (3.7 s).
   bool reuse_jacobian = false;
   double reuse_rate = 0.15;
+  /// Stop also when the error left after the update, estimated from the contraction
+  /// theta = sigma_k / sigma_{k-1} of the last two updates as theta / (1 - theta) sigma_k
+  /// (the usual estimate for Newton's method in implicit integrators, Hairer & Wanner IV.8),
+  /// is below the tolerance and theta < estimate_max_theta: the iterate is then already as
+  /// accurate as the next update would make it, and the iteration that would only confirm it is
+  /// saved. Only after an update with a freshly assembled Jacobian (modified Newton's linear
+  /// contraction makes the estimate less safe). Off by default (eq. 39 on the last update only).
+  bool estimate_convergence = false;
+  double estimate_max_theta = 0.1;
 };
 
 /// What solveNewton did with the Jacobian (modified Newton bookkeeping).
