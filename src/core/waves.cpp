@@ -434,8 +434,11 @@ inline void taylorParts(const T& u, const T& u2, T& even, T& odd) {
 
 /// The twelve sums (WaveVelocityCache's order) over components [0, n), n a multiple of kLanes,
 /// for a point displaced by (dx, dz) from its reference.
+/// The reference values of [0, n) (cos_b, sin_b, ep, em) are overwritten with those at the
+/// displaced point: the point's reference follows it.
 struct SumInputs {
-  const double *k, *kx, *cos_a, *sin_a, *cos_b, *sin_b, *ep, *em;
+  const double *k, *kx, *cos_a, *sin_a;
+  double *cos_b, *sin_b, *ep, *em;
   const double* cx[6];
   const double* cz[6];
 };
@@ -455,6 +458,10 @@ MD_WAVE_SIMD_CLONES void componentSums(const SumInputs& in, std::size_t n, doubl
     taylorParts(d, -(d * d), cd, sd);
     const Lane cb = MD_LOAD(in.cos_b + i), sb = MD_LOAD(in.sin_b + i);
     const Lane cbx = cb * cd - sb * sd, sbx = sb * cd + cb * sd;
+    *reinterpret_cast<Lane*>(in.cos_b + i) = cbx;
+    *reinterpret_cast<Lane*>(in.sin_b + i) = sbx;
+    *reinterpret_cast<Lane*>(in.ep + i) = Ep;
+    *reinterpret_cast<Lane*>(in.em + i) = Em;
     const Lane ca = MD_LOAD(in.cos_a + i), sa = MD_LOAD(in.sin_a + i);
     const Lane cth = cbx * ca - sbx * sa, sth = sbx * ca + cbx * sa;
     const Lane p1 = ch * cth, p2 = ch * sth, p3 = sh * cth, p4 = sh * sth;
@@ -561,6 +568,8 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points)
   sin_a_.assign(np_, 0.0);
   x_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
   z_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
+  valid_.assign(points, 0);
+  moves_.assign(points, 0);
   for (auto* v : {&cos_b_, &sin_b_, &ep_, &em_}) v->assign(points * np_, 0.0);
 }
 
@@ -600,16 +609,17 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
   double* sb = sin_b_.data() + off;
   double* ep = ep_.data() + off;
   double* em = em_.data() + off;
-  // Refresh the reference when the Taylor series would carry too far (also when it is NaN).
-  if (!(std::abs(x - x_ref_[p]) * kx_max_ <= kTaylorRadius && std::abs(zc - z_ref_[p]) * k_max_ <= kTaylorRadius)) {
+  // The reference: moved to the point by every exact evaluation (componentSums), computed
+  // afresh when the point jumped beyond the Taylor series' reach (also when it is NaN) and
+  // every kResync moves, so that the rounding of the carried values does not build up.
+  constexpr int kResync = 32;
+  double dx = x - x_ref_[p], dz = zc - z_ref_[p];
+  if (!(std::abs(dx) * kx_max_ <= kTaylorRadius && std::abs(dz) * k_max_ <= kTaylorRadius) || moves_[p] >= kResync) {
     x_ref_[p] = x;
     z_ref_[p] = zc;
-    for (std::size_t i = 0; i < nc_; ++i) {
-      cb[i] = std::cos(kx_[i] * x);
-      sb[i] = std::sin(kx_[i] * x);
-      ep[i] = std::exp(k_[i] * (zc + op_[i]));
-      em[i] = std::exp(-k_[i] * (zc + om_[i]));
-    }
+    dx = dz = 0.0;
+    valid_[p] = 0;
+    moves_[p] = 0;
   }
   // The components this elevation sees (a prefix: sorted by z_skip), whole lanes of them (the
   // extra ones, below their skip depth, add less than 1e-12 m/s each).
@@ -617,13 +627,27 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
       static_cast<std::size_t>(std::upper_bound(z_skip_.begin(), z_skip_.begin() + static_cast<std::ptrdiff_t>(nc_), zc) -
                                z_skip_.begin());
   const std::size_t n = (seen + kLanes - 1) / kLanes * kLanes;
+  // Components [valid, n) have no reference values yet (or stale ones): compute them there.
+  for (std::size_t i = valid_[p]; i < n; ++i) {
+    cb[i] = std::cos(kx_[i] * x_ref_[p]);
+    sb[i] = std::sin(kx_[i] * x_ref_[p]);
+    ep[i] = std::exp(k_[i] * (z_ref_[p] + op_[i]));
+    em[i] = std::exp(-k_[i] * (z_ref_[p] + om_[i]));
+  }
+  valid_[p] = std::max(valid_[p], n);
   SumInputs in{k_.data(), kx_.data(), cos_a_.data(), sin_a_.data(), cb, sb, ep, em, {}, {}};
   for (int q = 0; q < 6; ++q) {
     in.cx[q] = cx_[q].data();
     in.cz[q] = cz_[q].data();
   }
   double sums[12];
-  componentSums(in, n, x - x_ref_[p], zc - z_ref_[p], sums);
+  componentSums(in, n, dx, dz, sums);
+  if (dx != 0.0 || dz != 0.0) {  // [0, n) now refer to (x, zc); the others are stale
+    x_ref_[p] = x;
+    z_ref_[p] = zc;
+    valid_[p] = n;
+    ++moves_[p];
+  }
   vx = sums[0] * ramp_;
   vz = sums[6] * ramp_;
   ex.valid = inside;

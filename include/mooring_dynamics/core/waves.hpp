@@ -87,8 +87,9 @@ class WaveField {
 /// B_i = k_i cos(theta_i) x; the depth factors cosh, sinh of k_i (z + h) / sinh(k_i h) are sums
 /// of two exponentials E+-_i = e^{+-k_i (z + o+-_i)}. Per point, cos and sin of B_i and E+-_i are
 /// kept at a reference position and carried to (x, z) by the angle-addition formulas and
-/// e^{+-k_i dz}, with Taylor series of the small differences (refreshed when |k_i cos(theta_i)
-/// dx| or |k_i dz| would exceed kTaylorRadius). The value is WaveField::velocity(x, 0, z, t) up
+/// e^{+-k_i dz}, with Taylor series of the small differences; every evaluation moves the
+/// reference to its point (computed afresh when |k_i cos(theta_i) dx| or |k_i dz| would exceed
+/// kTaylorRadius, and after 32 moves). The value is WaveField::velocity(x, 0, z, t) up
 /// to rounding, with no transcendental function per component, point and evaluation, and the
 /// sum over the components is taken four components at a time (SIMD where the compiler has it).
 /// Near a point's last exact evaluation at the same time the cache expands instead (see
@@ -137,8 +138,11 @@ class WaveVelocityCache {
   std::vector<double> cx_[6], cz_[6];
   std::vector<double> cos_a_, sin_a_;   ///< of A_i at the current time
   /// Per point: the reference position (NaN until first used) and, per component, cos and sin
-  /// of B_i and E+, E- there.
+  /// of B_i and E+, E- there, valid for the first valid_ components; moves_ counts the moves
+  /// of the reference by the Taylor factors since it was last computed afresh.
   std::vector<double> x_ref_, z_ref_;
+  std::vector<std::size_t> valid_;
+  std::vector<int> moves_;
   std::vector<double> cos_b_, sin_b_, ep_, em_;
   /// Last exact evaluation of each point inside the water column: time, position, and the
   /// velocity with its first and second derivatives there: for vx then vz, the value, d/dx,
