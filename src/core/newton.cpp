@@ -55,6 +55,13 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
   double sigma_before = 0.0, mu_before = mu;
   bool last_kept = false;
   int k = 0;  // accepted updates
+  auto undoLastUpdate = [&]() {
+    Y = Y_before;
+    sigma_prev = sigma_before;
+    mu = mu_before;
+    --k;
+    last_kept = false;
+  };
   while (k < options.max_iterations) {
     const bool assembled = fresh;
     if (fresh) {
@@ -68,11 +75,7 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
     }
     if (!R.allFinite()) {
       if (!assembled && last_kept) {  // a kept Jacobian's update went bad: back, and assemble
-        Y = Y_before;
-        sigma_prev = sigma_before;
-        mu = mu_before;
-        --k;
-        last_kept = false;
+        undoLastUpdate();
         fresh = true;
         continue;
       }
@@ -112,13 +115,7 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       // The kept Jacobian no longer contracts fast enough: assemble afresh and redo the update.
       // When it made the last update too and the iteration grew (a Jacobian kept from an
       // earlier call can be far off), that update is suspect: redo it from the iterate before.
-      if (last_kept && sigma > sigma_prev) {
-        Y = Y_before;
-        sigma_prev = sigma_before;
-        mu = mu_before;
-        --k;
-        last_kept = false;
-      }
+      if (last_kept && sigma > sigma_prev) undoLastUpdate();
       fresh = true;
       continue;
     }
