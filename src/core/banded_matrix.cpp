@@ -2,18 +2,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
+
+// The block elimination has an AVX-512 kernel on x86-64 with GCC or Clang (see ColumnLU), chosen
+// at run time when the processor has AVX-512F.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(MD_NO_MULTIVERSION)
+#define MD_AVX512_KERNEL 1
+#include <immintrin.h>
+#else
+#define MD_AVX512_KERNEL 0
+#endif
 
 extern "C" {
 void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab,
              int* ipiv, int* info);
 }
 
-// The elimination kernels are compiled twice on x86-64 with GCC or Clang: for the baseline
+// The other elimination kernels are compiled twice on x86-64 with GCC or Clang: for the baseline
 // instruction set and with AVX2 (four doubles per operation); the loader picks the version the
 // processor supports (function multiversioning: no change to the build flags or to the
-// library's portability). Both do the same operations in the same order.
+// library's portability). All kernels do the same operations in the same order, so the results
+// do not depend on the processor: in particular no fused multiply-adds (AVX-512 has them; the
+// contraction into them is switched off for the block kernels below).
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(MD_NO_MULTIVERSION)
 #define MD_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
 #else
@@ -24,40 +38,6 @@ namespace mooring_dynamics {
 namespace core {
 
 namespace {
-
-/// r[0..len) -= l * p[0..len) for len a multiple of 4, in four-double vectors where the compiler
-/// has them (GCC/Clang vector extensions: two SSE2 operations each in the baseline clone, one
-/// AVX2 operation in the other); a plain loop elsewhere.
-#if defined(__GNUC__) || defined(__clang__)
-typedef double Vec4 __attribute__((vector_size(32), aligned(8), may_alias));
-template <int LEN>
-inline void subtractScaled(double* __restrict r, const double* __restrict p, double l) {
-  static_assert(LEN % 4 == 0, "four doubles at a time");
-  for (int c = 0; c < LEN; c += 4) {
-    Vec4 a = *reinterpret_cast<Vec4*>(r + c);
-    a -= l * *reinterpret_cast<const Vec4*>(p + c);
-    *reinterpret_cast<Vec4*>(r + c) = a;
-  }
-}
-/// The same from column c0 (a multiple of 4) on.
-template <int LEN>
-inline void subtractScaledFrom(double* __restrict r, const double* __restrict p, double l, int c0) {
-  for (int c = c0; c < LEN; c += 4) {
-    Vec4 a = *reinterpret_cast<Vec4*>(r + c);
-    a -= l * *reinterpret_cast<const Vec4*>(p + c);
-    *reinterpret_cast<Vec4*>(r + c) = a;
-  }
-}
-#else
-template <int LEN>
-inline void subtractScaled(double* __restrict r, const double* __restrict p, double l) {
-  for (int c = 0; c < LEN; ++c) r[c] -= l * p[c];
-}
-template <int LEN>
-inline void subtractScaledFrom(double* __restrict r, const double* __restrict p, double l, int c0) {
-  for (int c = c0; c < LEN; ++c) r[c] -= l * p[c];
-}
-#endif
 
 /// In-place band LU with partial pivoting of an n x n matrix in LAPACK band storage (leading
 /// dimension 2 kl + ku + 1), the algorithm of LAPACK's dgbtf2 step by step (same pivots: the
@@ -118,121 +98,324 @@ MD_SIMD_CLONES int bandFactor(int n, double* ab, int* ipiv) {
   return info;
 }
 
-/// Node-by-node elimination of the box scheme's block structure (see setBlockStructure). Panel
-/// j (row-major, M x W) holds the LEAD rows left over from node j - 1 (the anchor rows for
-/// j = 0) restricted to node j's columns, and the NB rows of interval j on nodes j and j + 1.
-/// Its NB columns of node j are eliminated with partial pivoting over the panel rows; the rows
-/// not chosen as pivots carry their node j + 1 part (the Schur complement) into panel j + 1.
-/// The last panel holds the leftover rows and the NB - LEAD rows of the last node. ipiv holds
-/// the panel row chosen at each elimination step. Returns 0, or the 1-based unknown of the first
-/// zero pivot.
-template <int NB, int LEAD>
-MD_SIMD_CLONES int blockFactor(int n, const double* rowsA, double* panels, double* lower, int* ipiv,
-                double* inv_diag, int* perm_out) {
-  constexpr int M = LEAD + NB, W = 2 * NB, LP = (M + 3) / 4 * 4;
-  // Row i of the matrix: W entries from the first column of its first node.
-  auto A = [&](int i, int c) { return rowsA[static_cast<std::size_t>(i) * W + static_cast<std::size_t>(c)]; };
-  const int nodes = n / NB;
-  for (int j = 0; j < nodes; ++j) {
-    double(*P)[W] = reinterpret_cast<double(*)[W]>(panels + static_cast<std::size_t>(j) * M * W);
-    const bool last = j + 1 == nodes;
-    const int rows = last ? NB : M, cols = last ? NB : W;
-    for (int r = 0; r < LEAD; ++r) {
-      for (int c = 0; c < NB; ++c) {
-        if (j == 0) {
-          P[r][c] = A(r, c);  // anchor rows: node 0
-        } else {
-          const double(*Q)[W] = reinterpret_cast<const double(*)[W]>(panels + static_cast<std::size_t>(j - 1) * M * W);
-          P[r][c] = Q[NB + r][NB + c];
-        }
-      }
-      for (int c = NB; c < W; ++c) P[r][c] = 0.0;
-    }
-    for (int r = LEAD; r < rows; ++r) {
-      const int row = LEAD + NB * j + (r - LEAD);
-      for (int c = 0; c < cols; ++c) P[r][c] = A(row, c);
-      for (int c = cols; c < W; ++c) P[r][c] = 0.0;
-    }
-    int* piv = ipiv + NB * j;
-    int perm[M];
-    for (int r = 0; r < M; ++r) perm[r] = r;
-    // Multipliers of column k in Lt[k][i] (rows i > k; zero elsewhere, padded to LP rows).
-    double(*Lt)[LP] = reinterpret_cast<double(*)[LP]>(lower + static_cast<std::size_t>(j) * NB * LP);
-    for (int k = 0; k < NB; ++k) {
-      // First entry of largest magnitude (branch-free: the comparisons select, they do not jump).
-      int p = k;
-      double best = std::abs(P[k][k]);
-      for (int i = k + 1; i < rows; ++i) {
-        const double a = std::abs(P[i][k]);
-        p = a > best ? i : p;
-        best = a > best ? a : best;
-      }
-      piv[k] = p;
-      if (P[p][k] == 0.0) return NB * j + k + 1;
-      // Interchange whole rows, and the multipliers of the earlier columns with them (the
-      // dense LU convention: the solve permutes the right-hand side once, then eliminates).
-      if (p != k) {
-        for (int c = 0; c < W; ++c) std::swap(P[p][c], P[k][c]);
-        for (int q = 0; q < k; ++q) std::swap(Lt[q][p], Lt[q][k]);
-        std::swap(perm[p], perm[k]);
-      }
-      const double rcp = 1.0 / P[k][k];
-      inv_diag[NB * j + k] = rcp;
-      for (int i = 0; i < LP; ++i) Lt[k][i] = 0.0;
-      // Fixed-length row updates (vectorized, also for l = 0: cheaper than a branch on the data)
-      // from the 4-column group holding column k + 1 on. Columns left of k + 1 are not read
-      // again (the multipliers are in Lt), so what the update leaves there does not matter.
-      const int c0 = (k + 1) / 4 * 4;
-      for (int i = k + 1; i < rows; ++i) {
-        const double l = P[i][k] * rcp;
-        Lt[k][i] = l;
-        subtractScaledFrom<W>(P[i], P[k], l, c0);
-      }
-    }
-    // Panel rows in input order: rows 0..LEAD-1 the carried rows, then the node's own.
-    for (int r = 0; r < M; ++r) perm_out[static_cast<std::size_t>(j) * M + r] = perm[r];
+// The block kernels: no contraction of a * b + c into a fused multiply-add (one rounding
+// instead of two, where the instruction set has it), and no warnings about passing vectors by
+// value between the always-inlined helpers (no calls remain, so no ABI).
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#elif defined(__GNUC__)
+#pragma GCC push_options
+#pragma GCC optimize("fp-contract=off")
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+#define MD_INLINE inline __attribute__((always_inline))
+#define MD_LAMBDA_INLINE __attribute__((always_inline))
+#else
+#define MD_INLINE inline
+#define MD_LAMBDA_INLINE
+#endif
+
+/// Hides v from the optimizer (GCC, Clang: an empty asm statement; v stays in a general
+/// register). The pivot search below must be compiled to conditional moves: its comparisons are
+/// data-dependent and a branch on them mispredicts about every other time. Without this GCC
+/// turns the selections of constant indices, and of bits it knows were doubles, into branches.
+template <class T>
+MD_INLINE void opaque(T& v) {
+#if defined(__GNUC__) || defined(__clang__)
+  asm("" : "+r"(v));
+#else
+  (void)v;
+#endif
+}
+
+/// The bits of x as a signed integer. For x >= 0 (not NaN) the integers order as the values, so
+/// magnitudes compare in general registers (one cycle) and selections are conditional moves.
+MD_INLINE std::int64_t bitsOf(double x) {
+  std::int64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+MD_INLINE double fromBits(std::int64_t b) {
+  double x;
+  std::memcpy(&x, &b, sizeof x);
+  return x;
+}
+
+/// The portable block LU: row-major, in place (see factor below).
+namespace rowkernel {
+
+/// The first of largest magnitude among the candidates [LO, LO + N) (raw: their bits): its
+/// index, magnitude (the bits of |x|) and bits. A balanced tree (depth ceil(log2 N), 4 for 13
+/// candidates) instead of a scan (depth N - 1), as the search is on the dependent chain of the
+/// elimination. The left operand wins ties at every level, so the result is the scan's: the
+/// first entry of largest magnitude (except with NaN entries, whose bits order above infinity).
+template <int LO, int N>
+MD_INLINE void firstLargest(const std::int64_t* raw, std::int64_t& best, std::int64_t& bits, int& at) {
+  if constexpr (N == 1) {
+    bits = raw[LO];
+    best = bits & INT64_MAX;
+    at = LO;
+    opaque(at);
+  } else {
+    std::int64_t m0, m1, r0, r1;
+    int i0, i1;
+    firstLargest<LO, N / 2>(raw, m0, r0, i0);
+    firstLargest<LO + N / 2, N - N / 2>(raw, m1, r1, i1);
+    const bool right = m1 > m0;
+    best = right ? m1 : m0;
+    bits = right ? r1 : r0;
+    at = right ? i1 : i0;
   }
+}
+
+/// Rows in VL-double vectors (GCC/Clang vector extensions: one AVX2 operation, or two SSE2
+/// ones in the baseline clone, per vector); single doubles elsewhere. The helpers take and give
+/// memory, not vectors (no vector crosses a function boundary, even before inlining).
+#if defined(__GNUC__) || defined(__clang__)
+constexpr int VL = 4;
+typedef double Vec __attribute__((vector_size(VL * sizeof(double)), aligned(8), may_alias));
+/// out[0 .. VL) = x - l p.
+MD_INLINE void subtractScaled(double* out, const double* x, const double* p, double l) {
+  *reinterpret_cast<Vec*>(out) = *reinterpret_cast<const Vec*>(x) - l * *reinterpret_cast<const Vec*>(p);
+}
+MD_INLINE void setZero(double* out) { *reinterpret_cast<Vec*>(out) = Vec{}; }
+MD_INLINE void swapVectors(double* a, double* b) {
+  const Vec x = *reinterpret_cast<const Vec*>(a);
+  *reinterpret_cast<Vec*>(a) = *reinterpret_cast<const Vec*>(b);
+  *reinterpret_cast<Vec*>(b) = x;
+}
+/// The vector of columns C0 .. C0 + VL - 1 of row r: right of column K r - l p, column K l, left
+/// of it unchanged (a constant shuffle and an insertion; no vector built from scalars, which the
+/// compiler would assemble lane by lane before the clones exist).
+template <int C0, int K, std::size_t... E>
+MD_INLINE void mergeUpdate(double* r, const double* p, double l, std::index_sequence<E...>) {
+  const Vec old = *reinterpret_cast<const Vec*>(r);
+  const Vec upd = old - l * *reinterpret_cast<const Vec*>(p);
+  Vec m = __builtin_shufflevector(old, upd, static_cast<int>(C0 + static_cast<int>(E) > K ? VL + E : E)...);
+  m[K - C0] = l;
+  *reinterpret_cast<Vec*>(r) = m;
+}
+template <int C0, int K>
+MD_INLINE void mergeUpdate(double* r, const double* p, double l) {
+  mergeUpdate<C0, K>(r, p, l, std::make_index_sequence<VL>{});
+}
+#else
+constexpr int VL = 1;
+MD_INLINE void subtractScaled(double* out, const double* x, const double* p, double l) { *out = *x - l * *p; }
+MD_INLINE void setZero(double* out) { *out = 0.0; }
+MD_INLINE void swapVectors(double* a, double* b) { std::swap(*a, *b); }
+template <int C0, int K>
+MD_INLINE void mergeUpdate(double* r, const double* p, double l) {
+  *r = C0 > K ? *r - l * *p : C0 == K ? l : *r;
+}
+#endif
+
+/// A panel being eliminated. Its rows stay at fixed places, LAPACK's way: an interchange swaps
+/// two rows' contents (with their multipliers), which keeps every other address a constant
+/// offset from two bases. Positions 0 .. LEAD - 1 are carried rows, then the interval's.
+template <int NB, int LEAD, int ROWS>
+struct Panel {
+  double* carried;
+  double* interval;
+  int in[ROWS];  ///< the panel row at each position (0 .. LEAD - 1 carried, then the interval's)
+  MD_INLINE double* row(int i) const { return i < LEAD ? carried + i * 2 * NB : interval + (i - LEAD) * 2 * NB; }
+};
+
+/// The updates of elimination step K that the next pivot search does not need: the vectors right
+/// of the one holding column K + 1, of the rows at positions K + 1 .. ROWS - 1 (their multiplier
+/// is in column K), with the pivot row at position K.
+template <int NB, int LEAD, int ROWS, int COLS, int K>
+MD_INLINE void updateRest(const Panel<NB, LEAD, ROWS>& P) {
+  constexpr int next = (K + 1) / VL * VL + VL;
+  if constexpr (next < COLS) {
+    const double* const pivot = P.row(K);
+    for (int i = K + 1; i < ROWS; ++i) {
+      double* const r = P.row(i);
+      const double l = r[K];
+      for (int c = next; c < COLS; c += VL) subtractScaled(r + c, r + c, pivot + c, l);
+    }
+  }
+}
+
+/// Elimination steps K .. NB - 1 of a panel of ROWS positions and COLS columns, in place in the
+/// panel's rows (LAPACK's storage: after step K the rows below the pivot hold their multiplier
+/// in column K, left of the entries still to be eliminated). cand: the bits of column K at
+/// positions K .. ROWS - 1.
+///
+/// Step K: the pivot search over cand, the interchange, 1 / pivot, and the update of the rows
+/// below. The dependent chain runs from one search to the next through the division and the
+/// update of column K + 1, which is therefore computed twice, by the same operations: as scalars
+/// that feed the next search directly (cand of step K + 1), and in the vector update. That is
+/// split too: the vector holding column K + 1 now (its lanes left of column K keep the earlier
+/// multipliers; whole vectors left of it are not touched again), the vectors right of it
+/// (updateRest) in the next step, where they run while its division does. With carry (an inner
+/// panel) the last step writes the updated node j + 1 part of the leftover rows (positions
+/// NB .. ROWS - 1) straight into the next panel's carried rows (zeros after). Fixed lengths
+/// throughout (K is a template parameter): the loops unroll and the vectors need no remainder.
+/// Returns 0, or K + 1 for an exactly zero pivot.
+template <int NB, int LEAD, int ROWS, int COLS, int K>
+MD_INLINE int eliminate(Panel<NB, LEAD, ROWS>& P, const std::int64_t* cand, double* __restrict rd,
+                        double* __restrict carry) {
+  if constexpr (K == NB) {
+    return 0;
+  } else {
+    
+    constexpr int W = 2 * NB, C = ROWS - K;
+    static_assert(COLS % VL == 0 && NB % VL == 0, "rows in whole vectors");
+    std::int64_t best, bits;
+    int p;
+    firstLargest<0, C>(cand, best, bits, p);
+    opaque(best);  // else the last merge becomes a branch on the zero test below
+    opaque(bits);
+    opaque(p);
+    if (best == 0) return K + 1;
+    p += K;
+    double* const rp = P.row(p);
+    double* const pivot = P.row(K);
+    double pv;
+    std::memcpy(&pv, &bits, sizeof pv);
+    const double rcp = 1.0 / pv;
+    rd[K] = rcp;
+    // Interchange positions K and p (the same row when p = K).
+    for (int c = 0; c < COLS; c += VL) swapVectors(rp + c, pivot + c);
+    const int in_p = P.in[p];
+    P.in[p] = P.in[K];
+    P.in[K] = in_p;
+    if constexpr (K > 0) updateRest<NB, LEAD, ROWS, COLS, K - 1>(P);
+    constexpr int gk = K / VL * VL, gn = (K + 1) / VL * VL;  // the vectors holding columns K, K + 1
+    std::int64_t next[C > 1 ? C - 1 : 1];                    // the next search's candidates
+    const double u = K + 1 < COLS ? pivot[K + 1] : 0.0;
+    for (int i = K + 1; i < ROWS; ++i) {
+      double* const r = P.row(i);
+      const double l = r[K] * rcp;
+      if constexpr (K + 1 < NB) {
+        next[i - K - 1] = bitsOf(r[K + 1] - l * u);
+        opaque(next[i - K - 1]);
+      }
+      if constexpr (K + 1 == NB && COLS == W) {
+        r[K] = l;
+        double* const out = carry + (i - NB) * W;
+        for (int c = 0; c < NB; c += VL) subtractScaled(out + c, r + NB + c, pivot + NB + c, l);
+        for (int c = NB; c < W; c += VL) setZero(out + c);
+      } else if constexpr (gk == gn) {
+        mergeUpdate<gn, K>(r + gn, pivot + gn, l);
+      } else {
+        r[K] = l;
+        if constexpr (gn < COLS) subtractScaled(r + gn, r + gn, pivot + gn, l);
+      }
+    }
+    if constexpr (K + 1 == NB) updateRest<NB, LEAD, ROWS, COLS, K>(P);  // nothing for an inner panel
+    return eliminate<NB, LEAD, ROWS, COLS, K + 1>(P, next, rd, carry);
+  }
+}
+
+/// Eliminates the panel P (ROWS positions, COLS columns) from its first column.
+template <int NB, int LEAD, int ROWS, int COLS>
+MD_INLINE int eliminatePanel(Panel<NB, LEAD, ROWS>& P, double* rd, double* carry) {
+  std::int64_t cand[ROWS];
+  for (int i = 0; i < ROWS; ++i) {
+    P.in[i] = i;
+    cand[i] = bitsOf(P.row(i)[0]);
+    opaque(cand[i]);
+  }
+  return eliminate<NB, LEAD, ROWS, COLS, 0>(P, cand, rd, carry);
+}
+
+/// Node-by-node elimination of the box scheme's block structure (see setBlockStructure). Panel j
+/// has M = LEAD + NB rows of W = 2 NB columns: the LEAD rows left over from node j - 1 (the
+/// anchor rows for j = 0), restricted to node j's columns, and the NB rows of interval j on nodes
+/// j and j + 1. Its NB columns of node j are eliminated with partial pivoting over the panel
+/// rows; the rows not chosen as pivots carry their node j + 1 part (the Schur complement) into
+/// panel j + 1. The last panel holds the leftover rows and the NB - LEAD rows of the last node,
+/// on NB columns.
+///
+/// In place: the interval rows in rows (the assembled matrix is overwritten), panel j's carried
+/// rows in rows j LEAD .. (j + 1) LEAD - 1 of carried (written by panel j - 1: node j part first,
+/// zeros after). At the end position i of panel j holds U's row i (i < NB) or a leftover row,
+/// with its multipliers left of that; perm records the panel row at each position, for the
+/// right-hand side, and inv_diag U's reciprocal diagonal. Returns 0, or the 1-based unknown of
+/// the first zero pivot.
+template <int NB, int LEAD>
+MD_SIMD_CLONES int factor(int n, double* rows, double* carried, double* inv_diag, int* perm) {
+  constexpr int M = LEAD + NB, W = 2 * NB;
+  const int nodes = n / NB;
+  for (int r = 0; r < LEAD; ++r)
+    for (int c = 0; c < W; ++c) carried[r * W + c] = c < NB ? rows[r * W + c] : 0.0;  // anchor rows: node 0
+  for (int j = 0; j + 1 < nodes; ++j) {
+    Panel<NB, LEAD, M> P{carried + static_cast<std::size_t>(LEAD * j) * W,
+                         rows + static_cast<std::size_t>(LEAD + NB * j) * W, {}};
+    if (const int k = eliminatePanel<NB, LEAD, M, W>(P, inv_diag + NB * j, P.carried + LEAD * W))
+      return NB * j + k;
+    for (int r = 0; r < M; ++r) perm[M * j + r] = P.in[r];
+  }
+  // The last node: the leftover rows and the node's own NB - LEAD rows, on its NB columns.
+  const int j = nodes - 1;
+  Panel<NB, LEAD, NB> P{carried + static_cast<std::size_t>(LEAD * j) * W, rows + static_cast<std::size_t>(LEAD + NB * j) * W,
+                        {}};
+  if (const int k = eliminatePanel<NB, LEAD, NB, NB>(P, inv_diag + NB * j, nullptr)) return NB * j + k;
+  for (int r = 0; r < NB; ++r) perm[M * j + r] = P.in[r];
   return 0;
 }
 
-/// Solve with the panels of blockFactor: forward through the panels (interchanges, unit lower
+/// Forward pass through panel j (ROWS positions): the right-hand side gathered in position order
+/// (the interchanges), then the unit lower factor column by column. v[0 .. NB) are the panel's
+/// entries of L^-1 P b, v[NB .. ROWS) the leftover rows' (carried to the next panel).
+template <int NB, int LEAD, int ROWS>
+MD_INLINE void forwardPanel(const Panel<NB, LEAD, ROWS>& P, const int* perm, const double* in, double* v) {
+  for (int r = 0; r < ROWS; ++r) v[r] = in[perm[r]];
+  for (int k = 0; k < NB; ++k) {
+    const double vk = v[k];
+    for (int i = k + 1; i < ROWS; ++i) v[i] -= P.row(i)[k] * vk;
+  }
+}
+
+/// Solve with the factor of blockFactor: forward through the panels (interchanges, unit lower
 /// factor, leftover rows carried on), then back substitution node by node from the top.
 template <int NB, int LEAD>
-MD_SIMD_CLONES void blockSolve(int n, const double* panels, const double* lower, const int* perm_in, const double* inv_diag,
-                               double* b) {
+MD_SIMD_CLONES void solve(int n, const double* rows, const double* carried, const int* perm, const double* inv_diag,
+                          double* b) {
   static_assert(NB % 2 == 0, "the dot products below take two columns at a time");
-  constexpr int M = LEAD + NB, W = 2 * NB, LP = (M + 3) / 4 * 4;
+  constexpr int M = LEAD + NB, W = 2 * NB;
   const int nodes = n / NB;
-  double carry[LEAD] = {};
+  // The panels (read only here).
+  auto panel = [&](int j) {
+    return Panel<NB, LEAD, M>{const_cast<double*>(carried) + static_cast<std::size_t>(LEAD * j) * W,
+                              const_cast<double*>(rows) + static_cast<std::size_t>(LEAD + NB * j) * W, {}};
+  };
+  double in[M];  // the panel's right-hand side by panel row: carried rows, then the interval's
+  for (int r = 0; r < LEAD; ++r) in[r] = b[r];
   for (int j = 0; j < nodes; ++j) {
-    const bool last = j + 1 == nodes;
-    const int rows = last ? NB : M;
-    double in[M];
-    for (int r = 0; r < LEAD; ++r) in[r] = j == 0 ? b[r] : carry[r];
-    for (int r = LEAD; r < rows; ++r) in[r] = b[LEAD + NB * j + (r - LEAD)];
-    const int* perm = perm_in + static_cast<std::size_t>(j) * M;
-    double v[LP] = {};
-    for (int r = 0; r < rows; ++r) v[r] = in[perm[r]];  // the interchanges of the factorization
-    const double(*Lt)[LP] = reinterpret_cast<const double(*)[LP]>(lower + static_cast<std::size_t>(j) * NB * LP);
-    for (int k = 0; k < NB; ++k) subtractScaled<LP>(v, Lt[k], v[k]);  // Lt[k][i] = 0 for i <= k, i >= rows
-    for (int r = 0; r < NB; ++r) b[NB * j + r] = v[r];  // rows of node j's panel are read
-    if (!last)
-      for (int r = 0; r < LEAD; ++r) carry[r] = v[NB + r];
+    const int* const pj = perm + M * j;
+    double v[M];
+    if (j + 1 < nodes) {
+      for (int q = 0; q < NB; ++q) in[LEAD + q] = b[LEAD + NB * j + q];
+      forwardPanel<NB, LEAD, M>(panel(j), pj, in, v);
+      for (int r = 0; r < LEAD; ++r) in[r] = v[NB + r];
+    } else {
+      for (int q = 0; q < NB - LEAD; ++q) in[LEAD + q] = b[LEAD + NB * j + q];
+      const Panel<NB, LEAD, M> Q = panel(j);
+      forwardPanel<NB, LEAD, NB>(Panel<NB, LEAD, NB>{Q.carried, Q.interval, {}}, pj, in, v);
+    }
+    for (int r = 0; r < NB; ++r) b[NB * j + r] = v[r];
   }
   for (int j = nodes - 1; j >= 0; --j) {
-    const double(*P)[W] = reinterpret_cast<const double(*)[W]>(panels + static_cast<std::size_t>(j) * M * W);
+    const Panel<NB, LEAD, M> U = panel(j);  // U's rows of node j: positions 0 .. NB - 1
     double* x = b + NB * j;
     const double* rd = inv_diag + NB * j;
-    // U12 x_{j+1} first: eight independent dot products, then U11 by back substitution.
+    // U12 x_{j+1} first: NB independent dot products, then U11 by back substitution.
     double t[NB];
     for (int k = 0; k < NB; ++k) t[k] = x[k];
     if (j + 1 < nodes) {
       const double* xn = b + NB * (j + 1);
       for (int k = 0; k < NB; ++k) {
+        const double* const u = U.row(k) + NB;
         double s0 = 0.0, s1 = 0.0;
         for (int c = 0; c < NB; c += 2) {
-          s0 += P[k][NB + c] * xn[c];
-          s1 += P[k][NB + c + 1] * xn[c + 1];
+          s0 += u[c] * xn[c];
+          s1 += u[c + 1] * xn[c + 1];
         }
         t[k] -= s0 + s1;
       }
@@ -242,10 +425,383 @@ MD_SIMD_CLONES void blockSolve(int n, const double* panels, const double* lower,
     for (int k = NB - 1; k >= 0; --k) {
       const double xk = t[k] * rd[k];
       x[k] = xk;
-      for (int i = 0; i < k; ++i) t[i] -= P[i][k] * xk;
+      for (int i = 0; i < k; ++i) t[i] -= U.row(i)[k] * xk;
     }
   }
 }
+
+}  // namespace rowkernel
+
+#if MD_AVX512_KERNEL
+// The AVX-512 kernel: every function in this region is compiled for AVX-512F (helpers included,
+// which a target attribute on the caller alone would not do).
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx512f"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx512f")
+// GCC 12 reports its own _mm512_undefined_*() placeholders in the intrinsics as maybe
+// uninitialized (GCC bug 105593).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
+namespace columnkernel {
+
+/// Node-by-node block LU of the box scheme's structure (see setBlockStructure), one node's panel
+/// at a time, column-major: the eight lanes of a vector are eight of the panel's rows. Panel j
+/// has M = LEAD + NB rows of W = 2 NB columns (nodes j, j + 1): the NB rows of interval j in
+/// slots 0 .. NB - 1, and in slots NB .. M - 1 the LEAD rows left over from node j - 1 (the
+/// anchor rows for j = 0), restricted to node j's columns. A column is LANES doubles (M rounded
+/// up to 8; the padding stays zero). The NB columns of node j are eliminated with partial
+/// pivoting over the panel rows; the rows not chosen as pivots carry their node j + 1 part (the
+/// Schur complement) into the carried slots of panel j + 1. The last panel holds the node's own
+/// NB - LEAD rows (slots 0 ..) and the leftover rows, on NB columns.
+///
+/// Rows never move. The row interchanges of partial pivoting only renumber positions (pos: the
+/// position of each slot, at: the slot at each position; carried rows first, as in the band),
+/// which decide ties in the pivot search (the first entry of largest magnitude in position
+/// order, as LAPACK's interchanges of whole rows make it) and the order of the leftover rows.
+/// An elimination step is then: the largest magnitude of column K over the active rows (a
+/// reduction across the lanes), 1 / |pivot| right away (the sign and the pivot's slot follow from
+/// comparisons), and per column right of K two vectors of multiply and masked subtract (the rows
+/// still active) where the row-major LU needs a dozen scalar and vector operations per row. The
+/// arithmetic is the row-oriented LU's, op for op: multiplier l = a * (1 / pivot), update
+/// x - l * u. Column K + 1 is kept in registers as the next step's candidates.
+///
+/// The factor stays in the panels, LAPACK's way: column k holds the multipliers of step k in the
+/// rows still active then, and U's entries in the rows chosen before (row k of U is the slot at
+/// position k). perm (M per node): the slot at each position; inv_diag: U's reciprocal diagonal.
+template <int NB, int LEAD>
+struct ColumnLU {
+  static constexpr int M = LEAD + NB, W = 2 * NB, LANES = (M + 7) / 8 * 8, G = LANES / 8;
+  static_assert(NB % 8 == 0 && LANES <= 32 && M < LANES, "slots in a 32-bit mask, a padding lane");
+  typedef std::uint32_t Slots;  // one bit per slot
+
+  static MD_INLINE double* column(double* panel, int c) { return panel + static_cast<std::size_t>(c) * LANES; }
+  static MD_INLINE __mmask8 part(Slots s, int g) { return static_cast<__mmask8>(s >> (8 * g)); }
+
+  /// dst[c * ds + r] = src[r * ss + c] for an 8 x 8 block (three stages of two-vector shuffles).
+  static MD_INLINE void transpose8(const double* src, std::size_t ss, double* dst, std::size_t ds) {
+    __m512d r[8], t[8];
+    for (int i = 0; i < 8; ++i) r[i] = _mm512_loadu_pd(src + i * ss);
+    for (int i = 0; i < 8; i += 2) {
+      t[i] = _mm512_unpacklo_pd(r[i], r[i + 1]);      // rows i, i+1 at columns 0 2 4 6
+      t[i + 1] = _mm512_unpackhi_pd(r[i], r[i + 1]);  // ... at columns 1 3 5 7
+    }
+    const __m512i lo2 = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0), hi2 = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+    for (int i = 0; i < 8; i += 4)
+      for (int k = 0; k < 2; ++k) {
+        r[i + k] = _mm512_permutex2var_pd(t[i + k], lo2, t[i + k + 2]);      // rows i..i+3, columns k, k+4
+        r[i + k + 2] = _mm512_permutex2var_pd(t[i + k], hi2, t[i + k + 2]);  // ... columns k+2, k+6
+      }
+    const __m512i lo4 = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0), hi4 = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
+    for (int k = 0; k < 4; ++k) {
+      _mm512_storeu_pd(dst + k * ds, _mm512_permutex2var_pd(r[k], lo4, r[k + 4]));
+      _mm512_storeu_pd(dst + (k + 4) * ds, _mm512_permutex2var_pd(r[k], hi4, r[k + 4]));
+    }
+  }
+
+  /// Interval j's NB rows into slots 0 .. NB - 1 of its panel, all W columns.
+  static MD_INLINE void loadInterval(double* panel, const double* rows, int j) {
+    const double* const src = rows + static_cast<std::size_t>(LEAD + NB * j) * W;
+    for (int q = 0; q < NB; q += 8)
+      for (int c = 0; c < W; c += 8) transpose8(src + q * W + c, W, column(panel, c) + q, LANES);
+  }
+
+  /// Eliminates the NB columns of a panel: count interval rows (slots 0 ..) and the LEAD carried
+  /// ones, on COLS columns. For an inner panel (COLS = W) the leftover rows' node j + 1 part goes
+  /// into the carried slots of next. Returns 0, or the 1-based column of the first exactly zero
+  /// pivot.
+  template <int COLS>
+  static MD_INLINE int panel(double* P, int count, double* rd, int* perm, double* next) {
+    constexpr int ROWS = COLS == W ? M : NB;
+    Slots active = ((Slots{1} << count) - 1) | (((Slots{1} << LEAD) - 1) << NB);
+    std::int64_t at[LANES];  // the slot at each position (the padding lane past the rows)
+    int pos[LANES];          // the position of each slot
+    for (int i = 0; i < LANES; ++i) {
+      at[i] = i < LEAD ? NB + i : i < ROWS ? i - LEAD : LANES - 1;
+      pos[i] = i < NB ? LEAD + i : i - NB;
+    }
+    __m512d cand[G], none[G] = {};
+    for (int g = 0; g < G; ++g) cand[g] = _mm512_loadu_pd(column(P, 0) + 8 * g);
+    int info = 0;
+    step<COLS, 0>(P, rd, next, active, at, pos, cand, none, 0, 0, info);
+    if (info != 0) return info;
+    for (int r = 0; r < ROWS; ++r) perm[r] = static_cast<int>(at[r]);
+    return 0;
+  }
+
+  /// Column c of P minus l u (u: the pivot row's entry, in slot q) in the rows of upd, to out.
+  static MD_INLINE void update(const double* P, int c, int q, Slots upd, const __m512d* l, double* out, __m512d* keep) {
+    const double* const col = column(const_cast<double*>(P), c);
+    const __m512d u = _mm512_set1_pd(col[q]);
+    for (int g = 0; g < G; ++g) {
+      const __m512d x = _mm512_loadu_pd(col + 8 * g);
+      const __m512d y = _mm512_mask_sub_pd(x, part(upd, g), x, _mm512_mul_pd(l[g], u));
+      if (keep) keep[g] = y;
+      else _mm512_storeu_pd(out + 8 * g, y);
+    }
+  }
+
+  /// Step K. cand: column K; (lp, qp, up): the previous step's multipliers, pivot slot and rows,
+  /// for the part of its update deferred to here.
+  template <int COLS, int K>
+  static MD_INLINE void step(double* P, double* rd, double* next, Slots& active, std::int64_t* at, int* pos,
+                             const __m512d* cand, const __m512d* lp, int qp, Slots up, int& info) {
+    if constexpr (K < NB) {
+      // The largest magnitude of the active rows (the bits of |x|, integers that order as the
+      // values), in every lane; 1 / |pivot| from it.
+      const __m512i abs_bits = _mm512_set1_epi64(INT64_MAX);
+      __m512i mag[G], best;
+      for (int g = 0; g < G; ++g) {
+        mag[g] = _mm512_maskz_and_epi64(part(active, g), _mm512_castpd_si512(cand[g]), abs_bits);
+        best = g == 0 ? mag[0] : _mm512_max_epi64(best, mag[g]);
+      }
+      best = _mm512_max_epi64(best, _mm512_shuffle_i64x2(best, best, 0x4e));
+      best = _mm512_max_epi64(best, _mm512_shuffle_i64x2(best, best, 0xb1));
+      best = _mm512_max_epi64(best, _mm512_permutex_epi64(best, 0xb1));
+      if (_mm_cvtsi128_si64(_mm512_castsi512_si128(best)) == 0) {  // every candidate exactly zero
+        info = K + 1;
+        return;
+      }
+      const double rcp_abs = 1.0 / _mm_cvtsd_f64(_mm512_castpd512_pd128(_mm512_castsi512_pd(best)));
+      // The rows holding it, and the negative candidates, one bit per slot.
+      Slots tied = 0, negative = 0;
+      for (int g = 0; g < G; ++g) {
+        tied |= Slots{_mm512_cmpeq_epi64_mask(mag[g], best)} << (8 * g);
+        negative |= Slots{_mm512_cmplt_epi64_mask(_mm512_castpd_si512(cand[g]), _mm512_setzero_si512())} << (8 * g);
+      }
+      int q = __builtin_ctz(tied);
+      if (__builtin_expect((tied & (tied - 1)) != 0, 0))  // a tie: the first in position order
+        for (Slots t = tied & (tied - 1); t != 0; t &= t - 1) {
+          const int s = __builtin_ctz(t);
+          if (pos[s] < pos[q]) q = s;
+        }
+      // 1 / pivot, broadcast: the sign bit of a negative pivot set by an exclusive or (exact:
+      // rounding is symmetric), not a branch on the sign.
+      const __m512d r = _mm512_castsi512_pd(_mm512_xor_si512(
+          _mm512_castpd_si512(_mm512_set1_pd(rcp_abs)), _mm512_set1_epi64(static_cast<long long>((negative >> q) & 1) << 63)));
+      _mm_store_sd(rd + K, _mm512_castpd512_pd128(r));
+      // Interchange positions K and pos[q]: the slot at K takes q's position.
+      const int p = pos[q], t = static_cast<int>(at[K]);
+      at[p] = t;
+      at[K] = q;
+      pos[t] = p;
+      pos[q] = K;
+      active &= ~(Slots{1} << q);
+      // The previous step's update of columns K + 2 .. (see below): it runs while this step's
+      // division does, instead of holding the ports when this step's multipliers are ready.
+      if constexpr (K > 0) {
+#pragma GCC unroll 1
+        for (int c = K + 2; c < COLS; ++c) update(P, c, qp, up, lp, column(P, c), nullptr);
+      }
+      // Multipliers into column K; columns K + 1 (the next candidates, kept in registers) and
+      // K + 2 now, the rest in the next step. The last step of an inner panel stages the
+      // leftover rows' node j + 1 part.
+      __m512d l[G], nextCand[G];
+      double* const colK = column(P, K);
+      for (int g = 0; g < G; ++g) {
+        l[g] = _mm512_mul_pd(cand[g], r);
+        _mm512_storeu_pd(colK + 8 * g, _mm512_mask_mov_pd(cand[g], part(active, g), l[g]));
+      }
+      if constexpr (K + 1 < NB) {
+        update(P, K + 1, q, active, l, nullptr, nextCand);
+        if constexpr (K + 2 < COLS) update(P, K + 2, q, active, l, column(P, K + 2), nullptr);
+        step<COLS, K + 1>(P, rd, next, active, at, pos, nextCand, l, q, active, info);
+      } else if constexpr (COLS == W) {
+#pragma GCC unroll 1
+        for (int c = NB; c < W; ++c) update(P, c, q, active, l, column(next, c - NB), nullptr);
+      }
+    }
+  }
+
+  /// The leftover rows of an eliminated inner panel (staged: their node j + 1 columns by slot;
+  /// at: the slot at each position) into the carried slots of panel Q in position order, zeros
+  /// in Q's node j + 2 columns.
+  static MD_INLINE void carry(const double* staged, const int* at_left, double* Q) {
+    constexpr int first = NB / 8;  // the vectors of the carried slots
+    __m512i idx[G];
+    __mmask8 valid[G], high[G];
+    for (int g = first; g < G; ++g) {
+      auto slot = [&](int e) MD_LAMBDA_INLINE {  // the source slot of lane e (scalars: the
+        const int r = 8 * (g - first) + e;       // positions were just stored one by one)
+        return static_cast<long long>(r < LEAD ? at_left[r] : 0);
+      };
+      idx[g] = _mm512_set_epi64(slot(7), slot(6), slot(5), slot(4), slot(3), slot(2), slot(1), slot(0));
+      valid[g] = static_cast<__mmask8>(((1u << LEAD) - 1) >> (8 * (g - first)));
+      high[g] = _mm512_cmpge_epi64_mask(idx[g], _mm512_set1_epi64(16));
+    }
+    for (int c = 0; c < NB; ++c) {
+      const double* const src = staged + static_cast<std::size_t>(c) * LANES;
+      for (int g = first; g < G; ++g) {
+        __m512d v = _mm512_maskz_permutex2var_pd(valid[g], _mm512_loadu_pd(src), idx[g], _mm512_loadu_pd(src + 8));
+        if constexpr (G > 2)  // slots 16 .. LANES - 1 (indices 16 .. act by their low four bits)
+          v = _mm512_mask_blend_pd(high[g] & valid[g], v,
+                                   _mm512_permutex2var_pd(_mm512_loadu_pd(src + 16), idx[g],
+                                                          _mm512_loadu_pd(src + (G > 3 ? 24 : 16))));
+        _mm512_storeu_pd(column(Q, c) + 8 * g, v);
+      }
+    }
+    for (int c = NB; c < W; ++c)
+      for (int g = first; g < G; ++g) _mm512_storeu_pd(column(Q, c) + 8 * g, _mm512_setzero_pd());
+  }
+};
+
+template <int NB, int LEAD>
+int factor(int n, const double* rows, double* panels, double* inv_diag, int* perm) {
+  typedef ColumnLU<NB, LEAD> B;
+  constexpr int M = B::M, W = B::W, LANES = B::LANES;
+  const int nodes = n / NB;
+  auto panel = [&](int j) { return panels + static_cast<std::size_t>(j) * W * LANES; };
+  // The last node's own rows (fewer than NB: no whole blocks, and not past the matrix).
+  auto loadTop = [&](double* P, int j) {
+    for (int c = 0; c < NB; ++c)
+      for (int q = 0; q < NB - LEAD; ++q)
+        B::column(P, c)[q] = rows[static_cast<std::size_t>(LEAD + NB * j + q) * W + static_cast<std::size_t>(c)];
+  };
+  // Panel 0's carried slots: the anchor rows, on node 0.
+  for (int c = 0; c < W; ++c)
+    for (int r = 0; r < LEAD; ++r)
+      B::column(panel(0), c)[NB + r] = c < NB ? rows[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c)] : 0.0;
+  if (nodes > 1) B::loadInterval(panel(0), rows, 0);
+  else loadTop(panel(0), 0);
+  alignas(64) double staged[NB * LANES];  // the leftover rows' node j + 1 part, by slot
+  for (int j = 0; j + 1 < nodes; ++j) {
+    double* const P = panel(j);
+    double* const Q = panel(j + 1);
+    if (j + 2 < nodes) B::loadInterval(Q, rows, j + 1);
+    else loadTop(Q, j + 1);
+    if (const int k = B::template panel<W>(P, NB, inv_diag + NB * j, perm + M * j, staged)) return NB * j + k;
+    B::carry(staged, perm + M * j + NB, Q);
+  }
+  const int j = nodes - 1;
+  if (const int k = B::template panel<NB>(panel(j), NB - LEAD, inv_diag + NB * j, perm + M * j, nullptr))
+    return NB * j + k;
+  return 0;
+}
+
+}  // namespace columnkernel
+
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC diagnostic pop
+#pragma GCC pop_options
+#endif
+#endif  // MD_AVX512_KERNEL
+
+#if MD_AVX512_KERNEL
+namespace columnkernel {
+
+/// Solve with the factor of columnkernel::factor: forward through the panels (interchanges, unit lower
+/// factor, leftover rows carried on), then back substitution node by node from the top. Entry
+/// (position i, column c) of panel j is column c's lane perm[i].
+template <int NB, int LEAD>
+void solve(int n, const double* panels, const int* perm, const double* inv_diag, double* b) {
+  static_assert(NB % 2 == 0, "the dot products below take two columns at a time");
+  constexpr int M = LEAD + NB, W = 2 * NB, LANES = (M + 7) / 8 * 8;
+  const int nodes = n / NB;
+  double in[M];  // the panel's right-hand side by slot: the interval's rows, then the carried ones
+  for (int r = 0; r < LEAD; ++r) in[NB + r] = b[r];
+  for (int j = 0; j < nodes; ++j) {
+    const int* const pj = perm + M * j;
+    const double* const P = panels + static_cast<std::size_t>(j) * W * LANES;
+    double v[M];
+    const double* R[M];  // panel rows by position: entry (i, c) at R[i][c * LANES]
+    if (j + 1 < nodes) {
+      for (int q = 0; q < NB; ++q) in[q] = b[LEAD + NB * j + q];
+      for (int i = 0; i < M; ++i) {
+        v[i] = in[pj[i]];
+        R[i] = P + pj[i];
+      }
+      for (int k = 0; k < NB; ++k) {
+        const double vk = v[k];
+        for (int i = k + 1; i < M; ++i) v[i] -= R[i][k * LANES] * vk;
+      }
+      for (int r = 0; r < LEAD; ++r) in[NB + r] = v[NB + r];
+    } else {
+      for (int q = 0; q < NB - LEAD; ++q) in[q] = b[LEAD + NB * j + q];
+      for (int i = 0; i < NB; ++i) {
+        v[i] = in[pj[i]];
+        R[i] = P + pj[i];
+      }
+      for (int k = 0; k < NB; ++k) {
+        const double vk = v[k];
+        for (int i = k + 1; i < NB; ++i) v[i] -= R[i][k * LANES] * vk;
+      }
+    }
+    for (int r = 0; r < NB; ++r) b[NB * j + r] = v[r];
+  }
+  for (int j = nodes - 1; j >= 0; --j) {
+    const int* const pj = perm + M * j;
+    const double* const P = panels + static_cast<std::size_t>(j) * W * LANES;
+    const double* U[NB];  // U's rows: entry (k, c) at U[k][c * LANES]
+    for (int k = 0; k < NB; ++k) U[k] = P + pj[k];
+    double* x = b + NB * j;
+    const double* rd = inv_diag + NB * j;
+    // U12 x_{j+1} first: NB independent dot products, then U11 by back substitution.
+    double t[NB];
+    for (int k = 0; k < NB; ++k) t[k] = x[k];
+    if (j + 1 < nodes) {
+      const double* xn = b + NB * (j + 1);
+      for (int k = 0; k < NB; ++k) {
+        double s0 = 0.0, s1 = 0.0;
+        for (int c = 0; c < NB; c += 2) {
+          s0 += U[k][(NB + c) * LANES] * xn[c];
+          s1 += U[k][(NB + c + 1) * LANES] * xn[c + 1];
+        }
+        t[k] -= s0 + s1;
+      }
+    }
+    // Column by column: x_k = t_k / U_kk, then x_k leaves the rows above (the dependent chain
+    // is one multiply and one update per unknown).
+    for (int k = NB - 1; k >= 0; --k) {
+      const double xk = t[k] * rd[k];
+      x[k] = xk;
+      for (int i = 0; i < k; ++i) t[i] -= U[i][k * LANES] * xk;
+    }
+  }
+}
+
+}  // namespace columnkernel
+#endif
+
+/// Whether this processor runs the AVX-512 block kernel (a test of the processor model that the
+/// runtime library fills in at start-up).
+bool columnKernel() {
+#if MD_AVX512_KERNEL
+  return __builtin_cpu_supports("avx512f");
+#else
+  return false;
+#endif
+}
+
+/// The block LU with the structure's kernel (setBlockStructure chose it and sized its storage).
+template <int NB, int LEAD>
+int blockFactor(bool columns, int n, double* rows, double* carried, double* panels, double* inv_diag, int* perm) {
+#if MD_AVX512_KERNEL
+  if (columns) return columnkernel::factor<NB, LEAD>(n, rows, panels, inv_diag, perm);
+#endif
+  (void)columns;
+  (void)panels;
+  return rowkernel::factor<NB, LEAD>(n, rows, carried, inv_diag, perm);
+}
+template <int NB, int LEAD>
+void blockSolve(bool columns, int n, const double* rows, const double* carried, const double* panels,
+                const double* inv_diag, const int* perm, double* b) {
+#if MD_AVX512_KERNEL
+  if (columns) return columnkernel::solve<NB, LEAD>(n, panels, perm, inv_diag, b);
+#endif
+  (void)columns;
+  (void)panels;
+  rowkernel::solve<NB, LEAD>(n, rows, carried, perm, inv_diag, b);
+}
+
+#if !defined(__clang__) && defined(__GNUC__)
+#pragma GCC diagnostic pop
+#pragma GCC pop_options
+#endif
 
 }  // namespace
 
@@ -264,12 +820,16 @@ void BandedMatrix::setBlockStructure(int block, int lead) {
                                 ", kl = " + std::to_string(kl_) + ", ku = " + std::to_string(ku_));
   block_ = block;
   lead_ = lead;
-  // Panels of M = lead + block rows by W = 2 block columns, multipliers padded to LP rows.
+  // The kernel's storage (see rowkernel::factor, columnkernel::ColumnLU): the row kernel
+  // eliminates in place in rows_ and the carried rows of every panel (lead per node), the column
+  // kernel in panels of 2 block columns of the panel rows (rounded up to 8) per node. Both: per
+  // node the permutation (M = lead + block) and U's reciprocal diagonal.
+  columns_ = columnKernel();
   const std::size_t nodes = static_cast<std::size_t>(n_ / block), M = static_cast<std::size_t>(lead + block),
-                    W = static_cast<std::size_t>(2 * block), LP = (M + 3) / 4 * 4;
+                    W = static_cast<std::size_t>(2 * block), lanes = (M + 7) / 8 * 8;
   rows_.assign(static_cast<std::size_t>(n_) * W, 0.0);
-  panels_.assign(nodes * M * W, 0.0);
-  lower_.assign(nodes * static_cast<std::size_t>(block) * LP, 0.0);
+  carried_.assign(columns_ ? 0 : nodes * static_cast<std::size_t>(lead) * W, 0.0);
+  panels_.assign(columns_ ? nodes * W * lanes : 0, 0.0);
   inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
   perm_.assign(nodes * M, 0);
 }
@@ -309,11 +869,14 @@ Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
 int BandedMatrix::factorize() {
   int info = 0;
   if (block_ == 8 && lead_ == 5)
-    info = blockFactor<8, 5>(n_, rows_.data(), panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data(), perm_.data());
+    info = blockFactor<8, 5>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(),
+                                  perm_.data());
   else if (block_ == 16 && lead_ == 10)  // 3-D, anchored
-    info = blockFactor<16, 10>(n_, rows_.data(), panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data(), perm_.data());
+    info = blockFactor<16, 10>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(),
+                                  perm_.data());
   else if (block_ == 16 && lead_ == 7)   // 3-D, free lower end
-    info = blockFactor<16, 7>(n_, rows_.data(), panels_.data(), lower_.data(), ipiv_.data(), inv_diag_.data(), perm_.data());
+    info = blockFactor<16, 7>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(),
+                                  perm_.data());
   else if (kl_ == 12 && ku_ == 10)
     info = bandFactor<12, 10>(n_, ab_.data(), ipiv_.data());
   else if (kl_ == 8 && ku_ == 8)
@@ -332,15 +895,18 @@ void BandedMatrix::solve(Eigen::VectorXd& b) const {
   if (!factorized_) throw std::logic_error("BandedMatrix::solve before a successful factorize()");
   if (b.size() != n_) throw std::invalid_argument("BandedMatrix::solve: right-hand side of wrong size");
   if (block_ == 8 && lead_ == 5) {
-    blockSolve<8, 5>(n_, panels_.data(), lower_.data(), perm_.data(), inv_diag_.data(), b.data());
+    blockSolve<8, 5>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(), perm_.data(),
+                           b.data());
     return;
   }
   if (block_ == 16 && lead_ == 10) {
-    blockSolve<16, 10>(n_, panels_.data(), lower_.data(), perm_.data(), inv_diag_.data(), b.data());
+    blockSolve<16, 10>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(), perm_.data(),
+                           b.data());
     return;
   }
   if (block_ == 16 && lead_ == 7) {
-    blockSolve<16, 7>(n_, panels_.data(), lower_.data(), perm_.data(), inv_diag_.data(), b.data());
+    blockSolve<16, 7>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(), perm_.data(),
+                           b.data());
     return;
   }
   const int kv = kl_ + ku_;

@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cassert>
+#include <cstddef>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,6 +17,23 @@
 
 namespace mooring_dynamics {
 namespace core {
+
+/// Allocator of cache-line aligned storage: the rows of the block structure are 2 block doubles
+/// (a multiple of 64 bytes), so that their vectors never straddle two lines.
+template <class T>
+struct CacheLineAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlign{64};
+  CacheLineAllocator() = default;
+  template <class U>
+  CacheLineAllocator(const CacheLineAllocator<U>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, kAlign); }
+  template <class U>
+  bool operator==(const CacheLineAllocator<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const CacheLineAllocator<U>&) const { return false; }
+};
 
 class BandedMatrix {
  public:
@@ -97,11 +116,15 @@ class BandedMatrix {
   int block_ = 0, lead_ = 0;     ///< block structure (setBlockStructure), 0: plain band
   int rowNode(int i) const { return i < lead_ ? 0 : (i - lead_) / block_; }
   [[noreturn]] void throwOutsidePattern(int i, int j) const;
-  std::vector<double> rows_;     ///< block structure: the matrix, 2 * block entries per row
-  std::vector<double> panels_;   ///< factored panels of the block elimination
-  std::vector<double> lower_;    ///< multipliers of the block elimination
+  /// Block structure: the matrix, 2 * block entries per row (the factor after factorize()).
+  std::vector<double, CacheLineAllocator<double>> rows_;
+  bool columns_ = false;  ///< block structure: the AVX-512 column kernel (see banded_matrix.cpp)
+  /// Block elimination, row kernel: the carried rows of every panel (lead per node).
+  std::vector<double, CacheLineAllocator<double>> carried_;
+  /// Block elimination, column kernel: the factored panels, column-major.
+  std::vector<double, CacheLineAllocator<double>> panels_;
   std::vector<double> inv_diag_; ///< reciprocals of U's diagonal (block elimination)
-  std::vector<int> perm_;        ///< block elimination: input row of each panel row
+  std::vector<int> perm_;        ///< block elimination: panel row at each position
 
 };
 

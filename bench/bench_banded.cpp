@@ -1,0 +1,101 @@
+// Node-by-node block LU of the box scheme (BandedMatrix::setBlockStructure, factorize, solve) on
+// its own, without assembly: the hot spot of the dynamic solvers (2-D: block 8, 5 anchor rows;
+// 3-D: block 16, 10 anchor rows).
+//
+// The matrix has the block pattern of the Newton matrix (lead rows on node 0, block rows per
+// interval on nodes j and j + 1, block - lead rows on the last node) with uniform random entries
+// in [-1, 1]: every entry of the pattern nonzero, and the pivots fall on carried and interval
+// rows alike. The argument is the node count (170: config/chain_mooring.yaml, n = 1360 in 2-D).
+//
+// BM_BlockFactor<block>/<nodes>: one factorize() per iteration. factorize() may overwrite the
+// assembled entries, so each iteration first copies them back (the dynamic solver assembles
+// before each factorization; the copy leaves them in cache as the assembly does) and only the
+// factorization is timed (manual time).
+// BM_BlockSolve<block>/<nodes>: one solve() of a fixed factorization per iteration (the copy of
+// the right-hand side is not timed).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mooring_dynamics/core/banded_matrix.hpp"
+
+using mooring_dynamics::core::BandedMatrix;
+
+namespace {
+
+/// A block-structured matrix of `nodes` nodes with random entries in the pattern; the smallest
+/// band that holds the structure.
+BandedMatrix randomBlockMatrix(int block, int lead, int nodes, unsigned seed) {
+  const int n = block * nodes;
+  BandedMatrix A(n, lead + block - 1, 2 * block - 1 - lead);
+  A.setBlockStructure(block, lead);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      if (A.inBand(i, j) && A.inPattern(i, j)) A.at(i, j) = u(rng);
+  return A;
+}
+
+void blockFactor(benchmark::State& state, int block, int lead) {
+  const int nodes = static_cast<int>(state.range(0));
+  BandedMatrix A = randomBlockMatrix(block, lead, nodes, 1);
+  const std::size_t entries = static_cast<std::size_t>(A.size()) * static_cast<std::size_t>(2 * block);
+  const std::vector<double> assembled(A.blockRow(0), A.blockRow(0) + entries);
+  for (auto _ : state) {
+    std::memcpy(A.blockRow(0), assembled.data(), entries * sizeof(double));
+    const auto t0 = std::chrono::steady_clock::now();
+    const int info = A.factorize();
+    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (info != 0) {
+      state.SkipWithError(("singular matrix: info = " + std::to_string(info)).c_str());
+      return;
+    }
+    benchmark::ClobberMemory();
+  }
+}
+
+void blockSolve(benchmark::State& state, int block, int lead) {
+  const int nodes = static_cast<int>(state.range(0));
+  BandedMatrix A = randomBlockMatrix(block, lead, nodes, 2);
+  if (A.factorize() != 0) {
+    state.SkipWithError("singular matrix");
+    return;
+  }
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd b(A.size()), x(A.size());
+  for (int i = 0; i < A.size(); ++i) b[i] = u(rng);
+  for (auto _ : state) {
+    x = b;
+    const auto t0 = std::chrono::steady_clock::now();
+    A.solve(x);
+    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    benchmark::DoNotOptimize(x.data());
+    benchmark::ClobberMemory();
+  }
+}
+
+void BM_BlockFactor8(benchmark::State& state) { blockFactor(state, 8, 5); }
+void BM_BlockSolve8(benchmark::State& state) { blockSolve(state, 8, 5); }
+void BM_BlockFactor16(benchmark::State& state) { blockFactor(state, 16, 10); }
+void BM_BlockSolve16(benchmark::State& state) { blockSolve(state, 16, 10); }
+void BM_BlockFactor16Free(benchmark::State& state) { blockFactor(state, 16, 7); }
+void BM_BlockSolve16Free(benchmark::State& state) { blockSolve(state, 16, 7); }
+
+}  // namespace
+
+BENCHMARK(BM_BlockFactor8)->Arg(170)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BlockSolve8)->Arg(170)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BlockFactor16)->Arg(170)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BlockSolve16)->Arg(170)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BlockFactor16Free)->Arg(170)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BlockSolve16Free)->Arg(170)->UseManualTime()->Unit(benchmark::kMicrosecond);
+
+BENCHMARK_MAIN();
