@@ -360,76 +360,6 @@ MD_SIMD_CLONES int factor(int n, double* rows, double* carried, double* inv_diag
   return 0;
 }
 
-/// Forward pass through panel j (ROWS positions): the right-hand side gathered in position order
-/// (the interchanges), then the unit lower factor column by column. v[0 .. NB) are the panel's
-/// entries of L^-1 P b, v[NB .. ROWS) the leftover rows' (carried to the next panel).
-template <int NB, int LEAD, int ROWS>
-MD_INLINE void forwardPanel(const Panel<NB, LEAD, ROWS>& P, const int* perm, const double* in, double* v) {
-  for (int r = 0; r < ROWS; ++r) v[r] = in[perm[r]];
-  for (int k = 0; k < NB; ++k) {
-    const double vk = v[k];
-    for (int i = k + 1; i < ROWS; ++i) v[i] -= P.row(i)[k] * vk;
-  }
-}
-
-/// Solve with the factor of blockFactor: forward through the panels (interchanges, unit lower
-/// factor, leftover rows carried on), then back substitution node by node from the top.
-template <int NB, int LEAD>
-MD_SIMD_CLONES void solve(int n, const double* rows, const double* carried, const int* perm, const double* inv_diag,
-                          double* b) {
-  static_assert(NB % 2 == 0, "the dot products below take two columns at a time");
-  constexpr int M = LEAD + NB, W = 2 * NB;
-  const int nodes = n / NB;
-  // The panels (read only here).
-  auto panel = [&](int j) {
-    return Panel<NB, LEAD, M>{const_cast<double*>(carried) + static_cast<std::size_t>(LEAD * j) * W,
-                              const_cast<double*>(rows) + static_cast<std::size_t>(LEAD + NB * j) * W, {}};
-  };
-  double in[M];  // the panel's right-hand side by panel row: carried rows, then the interval's
-  for (int r = 0; r < LEAD; ++r) in[r] = b[r];
-  for (int j = 0; j < nodes; ++j) {
-    const int* const pj = perm + M * j;
-    double v[M];
-    if (j + 1 < nodes) {
-      for (int q = 0; q < NB; ++q) in[LEAD + q] = b[LEAD + NB * j + q];
-      forwardPanel<NB, LEAD, M>(panel(j), pj, in, v);
-      for (int r = 0; r < LEAD; ++r) in[r] = v[NB + r];
-    } else {
-      for (int q = 0; q < NB - LEAD; ++q) in[LEAD + q] = b[LEAD + NB * j + q];
-      const Panel<NB, LEAD, M> Q = panel(j);
-      forwardPanel<NB, LEAD, NB>(Panel<NB, LEAD, NB>{Q.carried, Q.interval, {}}, pj, in, v);
-    }
-    for (int r = 0; r < NB; ++r) b[NB * j + r] = v[r];
-  }
-  for (int j = nodes - 1; j >= 0; --j) {
-    const Panel<NB, LEAD, M> U = panel(j);  // U's rows of node j: positions 0 .. NB - 1
-    double* x = b + NB * j;
-    const double* rd = inv_diag + NB * j;
-    // U12 x_{j+1} first: NB independent dot products, then U11 by back substitution.
-    double t[NB];
-    for (int k = 0; k < NB; ++k) t[k] = x[k];
-    if (j + 1 < nodes) {
-      const double* xn = b + NB * (j + 1);
-      for (int k = 0; k < NB; ++k) {
-        const double* const u = U.row(k) + NB;
-        double s0 = 0.0, s1 = 0.0;
-        for (int c = 0; c < NB; c += 2) {
-          s0 += u[c] * xn[c];
-          s1 += u[c + 1] * xn[c + 1];
-        }
-        t[k] -= s0 + s1;
-      }
-    }
-    // Column by column: x_k = t_k / U_kk, then x_k leaves the rows above (the dependent chain
-    // is one multiply and one update per unknown).
-    for (int k = NB - 1; k >= 0; --k) {
-      const double xk = t[k] * rd[k];
-      x[k] = xk;
-      for (int i = 0; i < k; ++i) t[i] -= U.row(i)[k] * xk;
-    }
-  }
-}
-
 }  // namespace rowkernel
 
 #if MD_AVX512_KERNEL
@@ -691,81 +621,117 @@ int factor(int n, const double* rows, double* panels, double* inv_diag, int* per
 #endif
 #endif  // MD_AVX512_KERNEL
 
-#if MD_AVX512_KERNEL
-namespace columnkernel {
 
-/// Solve with the factor of columnkernel::factor: forward through the panels (interchanges, unit lower
-/// factor, leftover rows carried on), then back substitution node by node from the top. Entry
-/// (position i, column c) of panel j is column c's lane perm[i].
-template <int NB, int LEAD>
-void solve(int n, const double* panels, const int* perm, const double* inv_diag, double* b) {
+/// Solve with a block factor of either kernel: forward through the panels (the interchanges,
+/// the unit lower factor, the leftover rows carried on), then back substitution node by node from
+/// the top. Layout gives panel j's row at position i (entry of column c at row[c * stride]) and
+/// the slots of the right-hand side (slot s at position i: perm[i]; the interval's row q and the
+/// carried row r). The loops have fixed lengths and unroll, so the dependent chains (one multiply
+/// and one update per unknown, the carried values from node to node) run in registers.
+template <int NB, int LEAD, class Layout>
+MD_INLINE void blockSolve(int n, const Layout& layout, const int* perm, const double* inv_diag, double* b) {
   static_assert(NB % 2 == 0, "the dot products below take two columns at a time");
-  constexpr int M = LEAD + NB, W = 2 * NB, LANES = (M + 7) / 8 * 8;
+  constexpr int M = LEAD + NB, S = Layout::stride;
   const int nodes = n / NB;
-  double in[M];  // the panel's right-hand side by slot: the interval's rows, then the carried ones
-  for (int r = 0; r < LEAD; ++r) in[NB + r] = b[r];
-  for (int j = 0; j < nodes; ++j) {
+  double in[M];  // the panel's right-hand side by slot
+  for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = b[r];
+  auto forward = [&](auto rowsc, int j) MD_LAMBDA_INLINE {
+    constexpr int ROWS = decltype(rowsc)::value;
     const int* const pj = perm + M * j;
-    const double* const P = panels + static_cast<std::size_t>(j) * W * LANES;
-    double v[M];
-    const double* R[M];  // panel rows by position: entry (i, c) at R[i][c * LANES]
-    if (j + 1 < nodes) {
-      for (int q = 0; q < NB; ++q) in[q] = b[LEAD + NB * j + q];
-      for (int i = 0; i < M; ++i) {
-        v[i] = in[pj[i]];
-        R[i] = P + pj[i];
-      }
-      for (int k = 0; k < NB; ++k) {
-        const double vk = v[k];
-        for (int i = k + 1; i < M; ++i) v[i] -= R[i][k * LANES] * vk;
-      }
-      for (int r = 0; r < LEAD; ++r) in[NB + r] = v[NB + r];
-    } else {
-      for (int q = 0; q < NB - LEAD; ++q) in[q] = b[LEAD + NB * j + q];
-      for (int i = 0; i < NB; ++i) {
-        v[i] = in[pj[i]];
-        R[i] = P + pj[i];
-      }
-      for (int k = 0; k < NB; ++k) {
-        const double vk = v[k];
-        for (int i = k + 1; i < NB; ++i) v[i] -= R[i][k * LANES] * vk;
-      }
+    for (int q = 0; q < ROWS - LEAD; ++q) in[Layout::intervalSlot(q)] = b[LEAD + NB * j + q];
+    double v[ROWS];
+    const double* R[ROWS];
+#pragma GCC unroll 32
+    for (int i = 0; i < ROWS; ++i) {
+      v[i] = in[pj[i]];
+      R[i] = layout.row(j, pj, i);
     }
+#pragma GCC unroll 16
+    for (int k = 0; k < NB; ++k) {
+      const double vk = v[k];
+#pragma GCC unroll 32
+      for (int i = k + 1; i < ROWS; ++i) v[i] -= R[i][k * S] * vk;
+    }
+#pragma GCC unroll 16
     for (int r = 0; r < NB; ++r) b[NB * j + r] = v[r];
-  }
+    if constexpr (ROWS == M)
+#pragma GCC unroll 16
+      for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = v[NB + r];
+  };
+  for (int j = 0; j + 1 < nodes; ++j) forward(std::integral_constant<int, M>{}, j);
+  forward(std::integral_constant<int, NB>{}, nodes - 1);
+  double xn[NB] = {};  // x of the node above
   for (int j = nodes - 1; j >= 0; --j) {
     const int* const pj = perm + M * j;
-    const double* const P = panels + static_cast<std::size_t>(j) * W * LANES;
-    const double* U[NB];  // U's rows: entry (k, c) at U[k][c * LANES]
-    for (int k = 0; k < NB; ++k) U[k] = P + pj[k];
-    double* x = b + NB * j;
-    const double* rd = inv_diag + NB * j;
+    const double* U[NB];  // U's rows
+#pragma GCC unroll 16
+    for (int k = 0; k < NB; ++k) U[k] = layout.row(j, pj, k);
+    const double* const rd = inv_diag + NB * j;
     // U12 x_{j+1} first: NB independent dot products, then U11 by back substitution.
     double t[NB];
-    for (int k = 0; k < NB; ++k) t[k] = x[k];
-    if (j + 1 < nodes) {
-      const double* xn = b + NB * (j + 1);
+#pragma GCC unroll 16
+    for (int k = 0; k < NB; ++k) t[k] = b[NB * j + k];
+    if (j + 1 < nodes)
+#pragma GCC unroll 16
       for (int k = 0; k < NB; ++k) {
         double s0 = 0.0, s1 = 0.0;
+#pragma GCC unroll 16
         for (int c = 0; c < NB; c += 2) {
-          s0 += U[k][(NB + c) * LANES] * xn[c];
-          s1 += U[k][(NB + c + 1) * LANES] * xn[c + 1];
+          s0 += U[k][(NB + c) * S] * xn[c];
+          s1 += U[k][(NB + c + 1) * S] * xn[c + 1];
         }
         t[k] -= s0 + s1;
       }
-    }
     // Column by column: x_k = t_k / U_kk, then x_k leaves the rows above (the dependent chain
     // is one multiply and one update per unknown).
+#pragma GCC unroll 16
     for (int k = NB - 1; k >= 0; --k) {
       const double xk = t[k] * rd[k];
-      x[k] = xk;
-      for (int i = 0; i < k; ++i) t[i] -= U[i][k * LANES] * xk;
+      xn[k] = xk;
+#pragma GCC unroll 16
+      for (int i = 0; i < k; ++i) t[i] -= U[i][k * S] * xk;
     }
+#pragma GCC unroll 16
+    for (int k = 0; k < NB; ++k) b[NB * j + k] = xn[k];
   }
 }
 
-}  // namespace columnkernel
-#endif
+/// The row kernel's factor: rows in place at their positions (see rowkernel::factor), the
+/// right-hand side by panel row (the carried rows first).
+template <int NB, int LEAD>
+struct RowLayout {
+  static constexpr int stride = 1;
+  const double* rows;
+  const double* carried;
+  MD_INLINE const double* row(int j, const int*, int i) const {
+    return i < LEAD ? carried + static_cast<std::size_t>(LEAD * j + i) * 2 * NB
+                    : rows + static_cast<std::size_t>(LEAD + NB * j + i - LEAD) * 2 * NB;
+  }
+  static constexpr int intervalSlot(int q) { return LEAD + q; }
+  static constexpr int carriedSlot(int r) { return r; }
+};
+
+/// The column kernel's factor: panels of columns, a row per slot (see columnkernel::ColumnLU).
+template <int NB, int LEAD>
+struct ColumnLayout {
+  static constexpr int lanes = (LEAD + NB + 7) / 8 * 8, stride = lanes;
+  const double* panels;
+  MD_INLINE const double* row(int j, const int* pj, int i) const {
+    return panels + static_cast<std::size_t>(j) * 2 * NB * lanes + static_cast<std::size_t>(pj[i]);
+  }
+  static constexpr int intervalSlot(int q) { return q; }
+  static constexpr int carriedSlot(int r) { return NB + r; }
+};
+
+template <int NB, int LEAD>
+MD_SIMD_CLONES void rowSolve(int n, const double* rows, const double* carried, const int* perm,
+                             const double* inv_diag, double* b) {
+  blockSolve<NB, LEAD>(n, RowLayout<NB, LEAD>{rows, carried}, perm, inv_diag, b);
+}
+template <int NB, int LEAD>
+MD_SIMD_CLONES void columnSolve(int n, const double* panels, const int* perm, const double* inv_diag, double* b) {
+  blockSolve<NB, LEAD>(n, ColumnLayout<NB, LEAD>{panels}, perm, inv_diag, b);
+}
 
 /// Whether this processor runs the AVX-512 block kernel (a test of the processor model that the
 /// runtime library fills in at start-up).
@@ -790,12 +756,8 @@ int blockFactor(bool columns, int n, double* rows, double* carried, double* pane
 template <int NB, int LEAD>
 void blockSolve(bool columns, int n, const double* rows, const double* carried, const double* panels,
                 const double* inv_diag, const int* perm, double* b) {
-#if MD_AVX512_KERNEL
-  if (columns) return columnkernel::solve<NB, LEAD>(n, panels, perm, inv_diag, b);
-#endif
-  (void)columns;
-  (void)panels;
-  rowkernel::solve<NB, LEAD>(n, rows, carried, perm, inv_diag, b);
+  if (columns) columnSolve<NB, LEAD>(n, panels, perm, inv_diag, b);
+  else rowSolve<NB, LEAD>(n, rows, carried, perm, inv_diag, b);
 }
 
 #if !defined(__clang__) && defined(__GNUC__)
