@@ -612,7 +612,7 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
   // The reference: moved to the point by every exact evaluation (componentSums), computed
   // afresh when the point jumped beyond the Taylor series' reach (also when it is NaN) and
   // every kResync moves, so that the rounding of the carried values does not build up.
-  constexpr int kResync = 32;
+  constexpr int kResync = 512;  // rounding of 512 moves: ~1e-13 relative at worst (test_waves)
   double dx = x - x_ref_[p], dz = zc - z_ref_[p];
   if (!(std::abs(dx) * kx_max_ <= kTaylorRadius && std::abs(dz) * k_max_ <= kTaylorRadius) || moves_[p] >= kResync) {
     x_ref_[p] = x;

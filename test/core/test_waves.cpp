@@ -518,3 +518,35 @@ TEST(Waves, VelocityCacheLinearizesWithinItsRadius) {
     std::printf("depth %.0f m: linear radius %.3g m\n", depth, r);
   }
 }
+
+// A node that creeps for thousands of evaluations (its reference carried by the Taylor factors
+// each time, computed afresh only every few hundred moves) keeps the direct sum's value: the
+// rounding of the carried values does not build up.
+TEST(Waves, VelocityCacheCarriedReferenceDoesNotDrift) {
+  // Relative to the larger of the velocity and 0.1 m/s (a tenth of the sea's velocities at that
+  // depth): reordered rounding only. A drift would grow with the moves; 32 and 512 moves between
+  // fresh references give the same largest difference.
+  constexpr double kRelTol = 1e-12;
+  constexpr double kFloor = 0.1;  // [m/s]
+  WaveSpec spec;
+  spec.type = WaveSpec::Type::PiersonMoskowitz;
+  spec.hs = 9.8;
+  spec.tp = 16.0;
+  spec.components = 400;
+  const WaveField field(spec, 1860.0, 9.81);
+  WaveVelocityCache cache(&field, 1);
+  double worst = 0.0;
+  for (int step = 0; step < 3000; ++step) {
+    const double t = 0.1 * step;
+    cache.setTime(t);
+    // A node heaving 3 m and surging 1 m with the sea, 10 m down.
+    const double x = 5.0 + std::sin(0.35 * t), z = -10.0 + 3.0 * std::sin(0.39 * t);
+    double vx, vz, ex, ey, ez;
+    cache.velocity(0, x, z, vx, vz);
+    field.velocity(x, 0.0, z, t, ex, ey, ez);
+    const double scale = std::max({kFloor, std::abs(ex), std::abs(ez)});
+    worst = std::max({worst, std::abs(vx - ex) / scale, std::abs(vz - ez) / scale});
+  }
+  EXPECT_LT(worst, kRelTol);
+  std::printf("largest relative difference over 3000 carried evaluations: %.2e\n", worst);
+}

@@ -89,7 +89,7 @@ class WaveField {
 /// kept at a reference position and carried to (x, z) by the angle-addition formulas and
 /// e^{+-k_i dz}, with Taylor series of the small differences; every evaluation moves the
 /// reference to its point (computed afresh when |k_i cos(theta_i) dx| or |k_i dz| would exceed
-/// kTaylorRadius, and after 32 moves). The value is WaveField::velocity(x, 0, z, t) up
+/// kTaylorRadius, and after 512 moves). The value is WaveField::velocity(x, 0, z, t) up
 /// to rounding, with no transcendental function per component, point and evaluation, and the
 /// sum over the components is taken four components at a time (SIMD where the compiler has it).
 /// Near a point's last exact evaluation at the same time the cache expands instead (see
