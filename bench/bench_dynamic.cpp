@@ -24,14 +24,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <string>
-
-#include <unistd.h>
 
 #include "mooring_dynamics/core/dynamics2d.hpp"
 #include "mooring_dynamics/core/model.hpp"
 #include "mooring_dynamics/core/problem_io.hpp"
+#include "bench_configs.hpp"
 #include "bench_problems.hpp"
 
 namespace md = mooring_dynamics::core;
@@ -93,41 +91,14 @@ void BM_DynamicStepCost(benchmark::State& state) {
   state.counters["ns_per_step_node"] = 1e9 * seconds / (static_cast<double>(steps) * static_cast<double>(node_count));
 }
 
-/// The package root: $MD_ROOT, else the source folder recorded in the CMakeCache.txt three levels
-/// above this executable. Empty when neither is found.
-std::string packageRoot() {
-  if (const char* env = std::getenv("MD_ROOT"); env != nullptr && *env != '\0') return env;
-  char buf[4096];
-  const ssize_t len = ::readlink("/proc/self/exe", buf, sizeof(buf) - 1);
-  if (len <= 0) return {};
-  std::string exe(buf, static_cast<std::size_t>(len));
-  for (int up = 0; up < 4; ++up) exe = exe.substr(0, exe.find_last_of('/'));  // strip name + 3 dirs
-  std::ifstream cache(exe + "/CMakeCache.txt");
-  const std::string key = "mooring_dynamics_SOURCE_DIR:STATIC=";
-  for (std::string line; std::getline(cache, line);)
-    if (line.rfind(key, 0) == 0) return line.substr(key.size());
-  return {};
-}
-
 /// Runs config/<file> through runDynamic (as `cable_sim dynamic`) for `duration` seconds at base
 /// step `dt`, and reports the real-time factor and the solver's counts.
 void runShippedCase(benchmark::State& state, const std::string& file, double duration, double dt) {
-  const std::string root = packageRoot();
-  if (root.empty()) {
-    state.SkipWithError(("config/" + file + " not found: set MD_ROOT (source scripts/env.sh)").c_str());
-    return;
-  }
   md::Problem problem;
-  try {
-    problem = md::loadProblemFromFile(root + "/config/" + file);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  if (!mooring_dynamics::bench::loadShippedConfig(state, file, problem)) return;
   problem.dynamics.duration = duration;
   problem.dynamics.dt = dt;
   problem.dynamics.output_interval = 0.0;
-  problem.dynamics.snapshot_interval = 0.0;  // the run, not the copies of whole-line snapshots
   md::DynamicSeries r;
   double seconds = 0.0;
   long iterations = 0;

@@ -22,6 +22,7 @@
 
 #include "mooring_dynamics/core/dynamics3d.hpp"
 #include "mooring_dynamics/core/problem_io.hpp"
+#include "bench_configs.hpp"
 #include "bench_problems.hpp"
 
 namespace md = mooring_dynamics::core;
@@ -87,20 +88,9 @@ void BM_Dynamic3DStepCost(benchmark::State& state) {
 
 void BM_ChainMooring3DRealTimeFactor(benchmark::State& state) {
   constexpr double kDuration = 20.0;  // [s] simulated
-  const char* root = std::getenv("MD_ROOT");
-  if (root == nullptr || *root == '\0') {
-    state.SkipWithError("config/chain_mooring_3d.yaml not found: set MD_ROOT (source scripts/env.sh)");
-    return;
-  }
   md::Problem problem;
-  try {
-    problem = md::loadProblemFromFile(std::string(root) + "/config/chain_mooring_3d.yaml");
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  if (!mooring_dynamics::bench::loadShippedConfig(state, "chain_mooring_3d.yaml", problem)) return;
   problem.dynamics.duration = kDuration;
-  problem.dynamics.snapshot_interval = 0.0;
   double wall = 0.0;
   long iterations = 0;
   for (auto _ : state) {
@@ -122,19 +112,8 @@ void BM_ChainMooring3DRealTimeFactor(benchmark::State& state) {
 /// modified Newton as shipped) through runDynamic3D, as `cable_sim dynamic`. The target:
 /// under 3.5 s (the paper's program: about 35 s).
 void BM_TowedArrayCase1RealTimeFactor(benchmark::State& state) {
-  const char* root = std::getenv("MD_ROOT");
-  if (root == nullptr || *root == '\0') {
-    state.SkipWithError("config/towed_array.yaml not found: set MD_ROOT (source scripts/env.sh)");
-    return;
-  }
   md::Problem problem;
-  try {
-    problem = md::loadProblemFromFile(std::string(root) + "/config/towed_array.yaml");
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
-  problem.dynamics.snapshot_interval = 0.0;
+  if (!mooring_dynamics::bench::loadShippedConfig(state, "towed_array.yaml", problem)) return;
   double wall = 0.0;
   long iterations = 0, newton = 0, jacobians = 0;
   for (auto _ : state) {
