@@ -1,5 +1,6 @@
 #include "mooring_dynamics/core/dynamics2d.hpp"
 
+#include <cstdlib>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -53,6 +54,8 @@ struct DynamicSolver2D::Impl {
   Totals totals;
   BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
   double factored_dt = 0.0;    ///< step size the factorization in newton_matrix belongs to [s]
+  Eigen::VectorXd Yd_prev;     ///< rate before the last accepted step (second-order predictor)
+  double last_dt = 0.0;        ///< size of the last accepted step [s]
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
@@ -434,6 +437,8 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   const TopInput top = im.top(t_new);
   DynamicStepSystem sys(im, t_new, dt, top);
   Eigen::VectorXd Y = im.Y + dt * im.Yd;  // predictor: constant rate
+  if (std::getenv("MD_PRED2") && im.last_dt == dt && im.Yd_prev.size() == im.Yd.size())
+    Y += std::atof(std::getenv("MD_PRED2")) * dt * (im.Yd - im.Yd_prev);
   const NewtonOptions no = stepNewtonOptions(im.opt);
   // A kept factorization (modified Newton) belongs to one step size.
   if (dt != im.factored_dt) im.newton_matrix.setZero();
@@ -452,6 +457,8 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   }
   // Accept: rates from eq. 26, water and spatial rows at the new level.
   const double g = im.ga.gamma;
+  im.Yd_prev = im.Yd;
+  im.last_dt = dt;
   im.Yd = (Y - im.Y) / (g * dt) - ((1.0 - g) / g) * im.Yd;
   im.Y = Y;
   im.t = t_new;

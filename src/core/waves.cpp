@@ -401,20 +401,21 @@ void WaveField::acceleration(double x, double y, double z, double t, double& ax,
 
 namespace {
 
-// The component sums are compiled for the baseline instruction set and with AVX2 (function
-// multiversioning, as the elimination kernels of banded_matrix.cpp); both do the same
-// operations in the same order.
+// The component sums are compiled for the baseline instruction set, with AVX2 and with
+// AVX-512 (function multiversioning, as the elimination kernels of block_lu.hpp); all do the
+// same operations in the same order (eight components per lane group in every version, which
+// the narrower instruction sets split), so the results do not depend on the machine.
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(MD_NO_MULTIVERSION)
-#define MD_WAVE_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#define MD_WAVE_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define MD_WAVE_SIMD_CLONES
 #endif
 
 #if defined(__GNUC__) || defined(__clang__)
-typedef double Lane __attribute__((vector_size(32), aligned(8), may_alias));  // four components
+typedef double Lane __attribute__((vector_size(64), aligned(8), may_alias));  // eight components
 #define MD_LOAD(p) (*reinterpret_cast<const Lane*>(p))
-inline double total(const Lane& v) { return (v[0] + v[1]) + (v[2] + v[3]); }
-constexpr std::size_t kLanes = 4;
+inline double total(const Lane& v) { return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7])); }
+constexpr std::size_t kLanes = 8;
 #else
 typedef double Lane;
 #define MD_LOAD(p) (*(p))
@@ -422,18 +423,25 @@ inline double total(const Lane& v) { return v; }
 constexpr std::size_t kLanes = 1;
 #endif
 
-/// Even and odd parts of the Taylor series of e^{u} (|u| <= kTaylorRadius, terms to u^14):
-/// cos, sin of u are (even(-u^2), odd(-u^2)) and e^{+-u} = even(u^2) +- odd(u^2).
-template <class T>
+/// Even and odd parts of the Taylor series of e^{u} to the power u^Order (Order odd):
+/// cos, sin of u are (even(-u^2), odd(-u^2)) and e^{+-u} = even(u^2) +- odd(u^2). The first
+/// term left out is below u^(Order+1) / (Order+1)!: for Order 11 and |u| <= kTaylorRadius = 0.2,
+/// 9e-18; for Order 7 and |u| <= kShortTaylorRadius = 0.02, 6e-19 (both under the rounding of
+/// the unit first term, 1.1e-16).
+template <int Order, class T>
 inline void taylorParts(const T& u, const T& u2, T& even, T& odd) {
-  even = 1.0 + u2 * (1.0 / 2 + u2 * (1.0 / 24 + u2 * (1.0 / 720 + u2 * (1.0 / 40320 + u2 * (1.0 / 3628800 +
-         u2 * (1.0 / 479001600 + u2 * (1.0 / 87178291200.0)))))));
-  odd = u * (1.0 + u2 * (1.0 / 6 + u2 * (1.0 / 120 + u2 * (1.0 / 5040 + u2 * (1.0 / 362880 + u2 * (1.0 / 39916800 +
-        u2 * (1.0 / 6227020800.0)))))));
+  static_assert(Order == 7 || Order == 11, "Taylor order 7 or 11");
+  if constexpr (Order == 11) {
+    even = 1.0 + u2 * (1.0 / 2 + u2 * (1.0 / 24 + u2 * (1.0 / 720 + u2 * (1.0 / 40320 + u2 * (1.0 / 3628800)))));
+    odd = u * (1.0 + u2 * (1.0 / 6 + u2 * (1.0 / 120 + u2 * (1.0 / 5040 + u2 * (1.0 / 362880 + u2 * (1.0 / 39916800))))));
+  } else {
+    even = 1.0 + u2 * (1.0 / 2 + u2 * (1.0 / 24 + u2 * (1.0 / 720)));
+    odd = u * (1.0 + u2 * (1.0 / 6 + u2 * (1.0 / 120 + u2 * (1.0 / 5040))));
+  }
 }
 
 /// The twelve sums (WaveVelocityCache's order) over components [0, n), n a multiple of kLanes,
-/// for a point displaced by (dx, dz) from its reference.
+/// for a point displaced by (dx, dz) from its reference, with Taylor series of order Order.
 /// The reference values of [0, n) (cos_b, sin_b, ep, em) are overwritten with those at the
 /// displaced point: the point's reference follows it.
 struct SumInputs {
@@ -442,6 +450,7 @@ struct SumInputs {
   const double* cx[6];
   const double* cz[6];
 };
+template <int Order>
 MD_WAVE_SIMD_CLONES void componentSums(const SumInputs& in, std::size_t n, double dx, double dz, double* out) {
   Lane sx[6], sz[6];
   for (int q = 0; q < 6; ++q) sx[q] = sz[q] = MD_LOAD(in.k) * 0.0;
@@ -449,13 +458,13 @@ MD_WAVE_SIMD_CLONES void componentSums(const SumInputs& in, std::size_t n, doubl
     // e^{+-k dz}: the exponentials E+- carried from the reference elevation.
     const Lane u = MD_LOAD(in.k + i) * dz;
     Lane ev, od;
-    taylorParts(u, u * u, ev, od);
+    taylorParts<Order>(u, u * u, ev, od);
     const Lane Ep = MD_LOAD(in.ep + i) * (ev + od), Em = MD_LOAD(in.em + i) * (ev - od);
     const Lane ch = Ep + Em, sh = Ep - Em;
     // cos, sin of kx dx: the phase B carried from the reference abscissa, then A added.
     const Lane d = MD_LOAD(in.kx + i) * dx;
     Lane cd, sd;
-    taylorParts(d, -(d * d), cd, sd);
+    taylorParts<Order>(d, -(d * d), cd, sd);
     const Lane cb = MD_LOAD(in.cos_b + i), sb = MD_LOAD(in.sin_b + i);
     const Lane cbx = cb * cd - sb * sd, sbx = sb * cd + cb * sd;
     *reinterpret_cast<Lane*>(in.cos_b + i) = cbx;
@@ -540,6 +549,8 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points)
   // Structure of arrays, padded with zero terms (skipped by no point: z_skip = +inf).
   for (auto* v : {&k_, &kx_, &op_, &om_, &omega_, &phase_}) v->assign(np_, 0.0);
   z_skip_.assign(np_, std::numeric_limits<double>::infinity());
+  k_upto_.assign(np_, 0.0);
+  kx_upto_.assign(np_, 0.0);
   for (int q = 0; q < 6; ++q) {
     cx_[q].assign(np_, 0.0);
     cz_[q].assign(np_, 0.0);
@@ -555,6 +566,8 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points)
     z_skip_[i] = c.z_skip;
     kx_max_ = std::max(kx_max_, std::abs(c.kx));
     k_max_ = std::max(k_max_, c.k);
+    kx_upto_[i] = kx_max_;
+    k_upto_[i] = k_max_;
     const double ax = c.A * c.aw * c.cd, az = c.A * c.aw;
     const double pw[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};  // powers of kx, k
     for (int q = 0; q < 6; ++q) {
@@ -562,6 +575,10 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points)
       cx_[q][i] = ax * f_q;
       cz_[q][i] = az * f_q;
     }
+  }
+  for (std::size_t i = nc_; i < np_; ++i) {  // the padding's prefixes: those of all components
+    kx_upto_[i] = kx_max_;
+    k_upto_[i] = k_max_;
   }
   exact_.assign(points, Exact{});
   cos_a_.assign(np_, 1.0);
@@ -641,7 +658,12 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
     in.cz[q] = cz_[q].data();
   }
   double sums[12];
-  componentSums(in, n, dx, dz, sums);
+  // The shorter series where the largest argument among the components summed allows it
+  // (a deep point sees long waves only, and moves little in a step).
+  if (n == 0 || std::max(std::abs(dx) * kx_upto_[n - 1], std::abs(dz) * k_upto_[n - 1]) <= kShortTaylorRadius)
+    componentSums<7>(in, n, dx, dz, sums);
+  else
+    componentSums<11>(in, n, dx, dz, sums);
   if (dx != 0.0 || dz != 0.0) {  // [0, n) now refer to (x, zc); the others are stale
     x_ref_[p] = x;
     z_ref_[p] = zc;

@@ -550,3 +550,37 @@ TEST(Waves, VelocityCacheCarriedReferenceDoesNotDrift) {
   EXPECT_LT(worst, kRelTol);
   std::printf("largest relative difference over 3000 carried evaluations: %.2e\n", worst);
 }
+
+// The carried reference's two Taylor series (to u^7 below kShortTaylorRadius, to u^11 up to
+// kTaylorRadius) on a single regular component, where k is known and nothing else rounds: moves
+// whose largest argument k |dx| or k |dz| sits just below and just above each radius, from a
+// reference carried along (each evaluation at a new time, so none is an expansion). The short
+// series used at 0.2 would be off by 0.2^8 / 8! = 6e-11, a series to u^3 at 0.02 by
+// 0.02^4 / 4! = 7e-9: far above the tolerance.
+TEST(Waves, VelocityCacheTaylorSeriesAtTheirRadii) {
+  constexpr double kRelTol = 1e-14;  // of a omega: one component's rounding only
+  const double depth = 1000.0, T = 5.0;
+  const WaveField field(regular(2.0, T), depth, kG);
+  const double k = field.components()[0].k, aw = 1.0 * 2.0 * kPi / T;
+  const double r7 = WaveVelocityCache::kShortTaylorRadius, r11 = WaveVelocityCache::kTaylorRadius;
+  const double args[] = {0.99 * r7, 1.01 * r7, 0.5 * r11, 0.99 * r11};
+  WaveVelocityCache cache(&field, 1);
+  double t = 0.0, x = 3.0, z = -2.0;
+  int evaluations = 0;
+  for (double u : args) {
+    for (int axis = 0; axis < 2; ++axis) {
+      for (double sign : {1.0, -1.0}) {
+        (axis == 0 ? x : z) += sign * u / k;
+        t += 0.77;
+        cache.setTime(t);
+        double vx, vz, ex, ey, ez;
+        cache.velocity(0, x, z, vx, vz);
+        field.velocity(x, 0.0, z, t, ex, ey, ez);
+        EXPECT_NEAR(vx, ex, kRelTol * aw) << "argument " << u << " axis " << axis;
+        EXPECT_NEAR(vz, ez, kRelTol * aw) << "argument " << u << " axis " << axis;
+        ++evaluations;
+      }
+    }
+  }
+  EXPECT_EQ(evaluations, 16);
+}

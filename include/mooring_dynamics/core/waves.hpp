@@ -91,7 +91,7 @@ class WaveField {
 /// reference to its point (computed afresh when |k_i cos(theta_i) dx| or |k_i dz| would exceed
 /// kTaylorRadius, and after 512 moves). The value is WaveField::velocity(x, 0, z, t) up
 /// to rounding, with no transcendental function per component, point and evaluation, and the
-/// sum over the components is taken four components at a time (SIMD where the compiler has it).
+/// sum over the components is taken eight components at a time (SIMD where the compiler has it).
 /// Near a point's last exact evaluation at the same time the cache expands instead (see
 /// linearRadius).
 class WaveVelocityCache {
@@ -106,8 +106,10 @@ class WaveVelocityCache {
   void velocity(std::size_t i, double x, double z, double& vx, double& vz);
 
   /// Largest phase difference or exponent carried by the Taylor series [rad]: the terms left
-  /// out are below 0.2^15 / 15! ~ 3e-23.
+  /// out (beyond u^11) are below 0.2^12 / 12! ~ 9e-18.
   static constexpr double kTaylorRadius = 0.2;
+  /// Below this largest argument the series stop at u^7 (left out: 0.02^8 / 8! ~ 6e-19) [rad].
+  static constexpr double kShortTaylorRadius = 0.02;
   /// Bound on the error of the expanded velocity (see linearRadius) [m/s]: far below the drag
   /// velocities of a cable and below the dynamic solver's Newton tolerance on velocities.
   static constexpr double kLinearTolerance = 1e-7;
@@ -124,11 +126,12 @@ class WaveVelocityCache {
  private:
   const WaveField* field_ = nullptr;
   std::size_t nc_ = 0;                  ///< components
-  std::size_t np_ = 0;                  ///< components padded to a multiple of 4 (zero terms)
+  std::size_t np_ = 0;                  ///< components padded to a multiple of 8 (zero terms)
   double t_ = 0.0;
   bool have_time_ = false;
   double ramp_ = 1.0;
   double kx_max_ = 0.0, k_max_ = 0.0;   ///< max_i |k_i cos(theta_i)|, max_i k_i [rad/m]
+  std::vector<double> kx_upto_, k_upto_;  ///< the same maxima over components [0, i] [rad/m]
   /// Per component, in increasing skip depth (the components a point at elevation z sees are
   /// a prefix; below z_skip a deep component's velocity is under 1e-12 m/s): k, k cos(theta),
   /// the offsets o+- of the exponentials, and the coefficients of the six sums of vx (value,
