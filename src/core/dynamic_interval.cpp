@@ -110,9 +110,25 @@ void nodeInertia(const Environment& env, const Material& m, const NodeView& nv, 
 
 }  // namespace
 
+void nodeStepTerms(const Environment& env, const Material& m, const NodeView& now, const NodeView& prev,
+                   const double* yd, const StepWeights& wts, bool jacobian, NodeTerms& out) {
+  nodeLoad(env, m, now, out.f1, out.f2, out.df1, out.df2);
+  // Inertia at both levels applied to the weighted rate (eq. 13).
+  nodeInertia(env, m, now, yd, wts.wr, true, out.I, jacobian ? out.dI : nullptr);
+  nodeInertia(env, m, prev, yd, wts.wr, false, out.Ip, jacobian ? out.dIp : nullptr);
+}
+
 void intervalStepRows(const Environment& env, const Material& m, double h, const NodeView& a, const NodeView& b,
                       const NodeView& pa, const NodeView& pb, const double* yda, const double* ydb,
                       const StepWeights& wts, const double* Sprev, double* R, double (*J)[2 * N]) {
+  NodeTerms ta, tb;
+  nodeStepTerms(env, m, a, pa, yda, wts, J != nullptr, ta);
+  nodeStepTerms(env, m, b, pb, ydb, wts, J != nullptr, tb);
+  intervalStepRows(m, h, a, b, ta, tb, wts, Sprev, R, J);
+}
+
+void intervalStepRows(const Material& m, double h, const NodeView& a, const NodeView& b, const NodeTerms& ta,
+                      const NodeTerms& tb, const StepWeights& wts, const double* Sprev, double* R, double (*J)[2 * N]) {
   const double* Ya = a.y;
   const double* Yb = b.y;
   const double ak = wts.ak, wk = 1.0 - ak, hh = 0.5 * h;
@@ -120,9 +136,8 @@ void intervalStepRows(const Environment& env, const Material& m, double h, const
   const double Ta = eq2d::tension(m, Ya[EPS]), Tb = eq2d::tension(m, Yb[EPS]);
   const double pa3 = 1.0 + Ya[EPS], pb3 = 1.0 + Yb[EPS];
   const double dphi = Yb[PHI] - Ya[PHI];
-  double f1a, f2a, f1b, f2b, df1a[N], df2a[N], df1b[N], df2b[N];
-  nodeLoad(env, m, a, f1a, f2a, df1a, df2a);
-  nodeLoad(env, m, b, f1b, f2b, df1b, df2b);
+  const double f1a = ta.f1, f2a = ta.f2, f1b = tb.f1, f2b = tb.f2;
+  const double *df1a = ta.df1, *df2a = ta.df2, *df1b = tb.df1, *df2b = tb.df2;
   double sp[N];
   sp[0] = Tb - Ta - 0.5 * (Ya[SN] + Yb[SN]) * dphi + 0.5 * h * (f1a + f1b);   // eq. 1
   sp[1] = Yb[SN] - Ya[SN] + 0.5 * (Ta + Tb) * dphi + 0.5 * h * (f2a + f2b);   // eq. 2
@@ -134,12 +149,11 @@ void intervalStepRows(const Environment& env, const Material& m, double h, const
   sp[6] = Yb[X] - Ya[X] - 0.5 * h * (pa3 * a.s + pb3 * b.s);                  // eq. 42
   sp[7] = Yb[Z] - Ya[Z] - 0.5 * h * (pa3 * a.c + pb3 * b.c);
   // Inertia at both levels applied to the weighted rate, averaged over the nodes (eq. 13).
-  double ia[4], ib[4], qa[4], qb[4];
-  double dia[4][N], dib[4][N], dqa[4][N], dqb[4][N];
-  nodeInertia(env, m, a, yda, wts.wr, true, ia, J ? dia : nullptr);
-  nodeInertia(env, m, b, ydb, wts.wr, true, ib, J ? dib : nullptr);
-  nodeInertia(env, m, pa, yda, wts.wr, false, qa, J ? dqa : nullptr);
-  nodeInertia(env, m, pb, ydb, wts.wr, false, qb, J ? dqb : nullptr);
+  const double *ia = ta.I, *ib = tb.I, *qa = ta.Ip, *qb = tb.Ip;
+  const double(*dia)[N] = ta.dI;
+  const double(*dib)[N] = tb.dI;
+  const double(*dqa)[N] = ta.dIp;
+  const double(*dqb)[N] = tb.dIp;
   for (int q = 0; q < N; ++q) {
     if (q < kWeightedRows) {
       const double in1 = q < 4 ? hh * (ia[q] + ib[q]) : 0.0;

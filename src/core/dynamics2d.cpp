@@ -196,22 +196,33 @@ class DynamicStepSystem : public NewtonSystem {
     }
     const StepWeights wts{ak, (1.0 - am) * c1};
     double Jl[N][2 * N];
+    terms_.resize(static_cast<std::size_t>(n));
+    terms_material_.assign(static_cast<std::size_t>(n), -1);  // none computed yet
 
     for (int j = 0; j + 1 < n; ++j) {
       const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
       const int row = kAnchorRows + N * j;
       const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
       if (iv.h > 0.0) {
-        // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp).
+        // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp), from the terms of
+        // its nodes, each computed once for the intervals of one material it belongs to.
         const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
         const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
-        const NodeView pa{Yp.data() + N * j, cp_[a], spr_[a], &im_.water[a]};
-        const NodeView pb{Yp.data() + N * (j + 1), cp_[b], spr_[b], &im_.water[b]};
+        const Material& m = im_.problem.materials[iv.material];
+        auto termsOf = [&](std::size_t node, const NodeView& now) -> const NodeTerms& {
+          if (terms_material_[node] != static_cast<long>(iv.material)) {
+            const NodeView prev{Yp.data() + N * node, cp_[node], spr_[node], &im_.water[node]};
+            nodeStepTerms(im_.problem.environment, m, now, prev, ydw_.data() + N * node, wts, J != nullptr,
+                          terms_[node]);
+            terms_material_[node] = static_cast<long>(iv.material);
+          }
+          return terms_[node];
+        };
+        const NodeTerms& ta = termsOf(a, na);
+        const NodeTerms& tb = termsOf(b, nb);
         // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
         double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
-        intervalStepRows(im_.problem.environment, im_.problem.materials[iv.material], iv.h, na, nb, pa, pb,
-                         ydw_.data() + N * j, ydw_.data() + N * (j + 1), wts, im_.S.data() + N * j, R.data() + row,
-                         J ? Jrows : nullptr);
+        intervalStepRows(m, iv.h, na, nb, ta, tb, wts, im_.S.data() + N * j, R.data() + row, J ? Jrows : nullptr);
         if (J && Jrows == Jl)
           for (int q = 0; q < N; ++q)
             for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
@@ -303,6 +314,8 @@ class DynamicStepSystem : public NewtonSystem {
   std::vector<double> cp_, spr_;  ///< cos, sin of phi at the previous level
   std::vector<double> c_, s_;     ///< cos, sin of phi at the current iterate
   Eigen::VectorXd ydw_;           ///< weighted rates (eq. 30) at the current iterate
+  std::vector<NodeTerms> terms_;   ///< each node's terms in this evaluation (nodeStepTerms)
+  std::vector<long> terms_material_;  ///< the material terms_ were computed with (-1: none)
 };
 
 // ------------------------------------------------------------------------------------------------

@@ -28,6 +28,28 @@ struct StepWeights {
   double wr = 0.0;
 };
 
+/// The terms of one node in the rows of the intervals on either side of it: distributed load
+/// (eqs. 1-2, 35-36) and inertia rows M(Y) Yd~ (eq. 8, rows 0-3) at the new level and at the
+/// previous one, with their gradients along the node's unknowns. A node between two intervals of
+/// the same material enters both with the same terms, computed once (DynamicStepSystem).
+struct NodeTerms {
+  double f1 = 0.0, f2 = 0.0;       ///< load along t, n per unit length [N/m]
+  double df1[N] = {}, df2[N] = {};  ///< their gradients (with the Jacobian only)
+  double I[4] = {}, Ip[4] = {};     ///< inertia rows at the new and the previous level [N/m, -]
+  double dI[4][N] = {}, dIp[4][N] = {};  ///< their gradients (with the Jacobian only)
+};
+
+/// The terms of a node of material m: its state now and at the previous level, and its weighted
+/// rate yd (weight wts.wr along its own unknown). Gradients only when `jacobian` is true.
+void nodeStepTerms(const Environment& env, const Material& m, const NodeView& now, const NodeView& prev,
+                   const double* yd, const StepWeights& wts, bool jacobian, NodeTerms& out);
+
+/// Rows R[0..7] of interval (a, b) of length h > 0 and material m from its nodes' terms (ta, tb,
+/// computed by nodeStepTerms with the same material, and with the Jacobian when J is non-null),
+/// the previous level's spatial rows Sprev[0..7]; J as below.
+void intervalStepRows(const Material& m, double h, const NodeView& a, const NodeView& b, const NodeTerms& ta,
+                      const NodeTerms& tb, const StepWeights& wts, const double* Sprev, double* R, double (*J)[2 * N]);
+
 /// Rows R[0..7] of interval (a, b) of length h > 0 and material m at the new level (a, b), the
 /// previous level (pa, pb) with its spatial rows Sprev[0..7], and the weighted rates yda, ydb.
 /// When J is non-null, J[q][k] = dR[q] / dY_k with k < N the unknowns of node a and k >= N those
