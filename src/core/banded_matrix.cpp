@@ -136,6 +136,19 @@ void BandedMatrix::setZero() {
   factorized_ = false;
 }
 
+void BandedMatrix::setZeroRows(int first, int count) {
+  assert(first >= 0 && count >= 0 && first + count <= n_);
+  if (block_ > 0) {
+    const std::size_t w = 2 * static_cast<std::size_t>(block_);
+    std::fill(rows_.begin() + static_cast<std::ptrdiff_t>(first * w),
+              rows_.begin() + static_cast<std::ptrdiff_t>((first + count) * w), 0.0);
+    return;
+  }
+  for (int i = first; i < first + count; ++i)
+    for (int j = std::max(0, i - kl_); j <= std::min(n_ - 1, i + ku_); ++j)
+      ab_[static_cast<std::size_t>(kl_ + ku_ + i - j) + static_cast<std::size_t>(j) * ldab_] = 0.0;
+}
+
 Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
   assert(!factorized_);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(n_);

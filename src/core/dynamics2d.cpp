@@ -177,6 +177,7 @@ class DynamicStepSystem : public NewtonSystem {
     R[3] = Y[X] - im_.problem.anchor_x;
     R[4] = Y[Z] - im_.problem.anchor_z;
     if (J) {
+      J->setZeroRows(0, kAnchorRows);
       J->at(0, U) = 1.0;
       J->at(1, V) = 1.0;
       J->at(2, OMEGA) = 1.0;
@@ -228,7 +229,9 @@ class DynamicStepSystem : public NewtonSystem {
             for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
         continue;
       }
-      // Junction (pin) rows: few, left to automatic differentiation.
+      // Junction (pin) rows: few, left to automatic differentiation (only their non-zero
+      // entries written).
+      if (J) J->setZeroRows(row, N);
       AD16 y[2 * N], ydw[2 * N], yp[2 * N];
       for (int k = 0; k < 2 * N; ++k) {
         const int idx = N * j + k;
@@ -270,6 +273,7 @@ class DynamicStepSystem : public NewtonSystem {
     AD8 y[N];
     for (int k = 0; k < N; ++k) y[k] = AD8(Y[top + k], N, k);
     AD8 r[kTopRows];
+    if (J) J->setZeroRows(row, kTopRows);
     r[0] = y[OMEGA];
     if (top_.force) {
       AD8 Fx, Fz;
@@ -303,6 +307,9 @@ class DynamicStepSystem : public NewtonSystem {
           if (r[q].derivatives()[k] != 0.0) J->at(row + q, top + k) = r[q].derivatives()[k];
     }
   }
+
+  /// Interval rows write all their entries (intervalStepRows), the others are zeroed first.
+  bool writesEveryBlockEntry() const override { return true; }
 
   const std::vector<Water>& water() const { return water_; }
 

@@ -623,19 +623,28 @@ TEST(Dynamics2D, StraightShipTrackAlongXTowsTheTop) {
 // dynamic_interval.hpp, AutoDiff junction and end rows) against central finite differences,
 // mid-run on a heaved line in current without seabed contact (the contact onset is a kink that
 // central differences straddle; test_dynamic_interval checks the contact terms against AutoDiff). Smooth terms agree to round-off; 1e-5 leaves room
-// for the step-size truncation of the finite differences.
+// for the step-size truncation of the finite differences. The line is also split into two
+// segments (junction rows). The matrix is assembled over NaN entries, as solveNewton reuses it
+// without clearing: an entry the assembly leaves unwritten fails the check.
 TEST(Dynamics2D, StepJacobianMatchesFiniteDifferences) {
   constexpr double kFdRelativeTolerance = 1e-5;
-  Problem p = chainMooring(false);
-  p.dynamics.top_motion.type = TopMotion::Type::Sinusoid;
-  p.dynamics.top_motion.amplitude_x = 0.5;
-  p.dynamics.top_motion.amplitude_z = 0.5;
-  p.dynamics.top_motion.period = 8.0;
-  for (bool position : {false, true}) {
-    p.dynamics.top_motion.prescribe_position = position;
-    DynamicSolver2D solver(p);
-    ASSERT_TRUE(solver.advanceTo(2.0).ok);
-    EXPECT_LT(solver.jacobianFiniteDifferenceError(p.dynamics.dt), kFdRelativeTolerance)
-        << (position ? "position-fed top" : "velocity top");
+  for (bool junction : {false, true}) {
+    Problem p = chainMooring(false);
+    if (junction) {
+      Segment upper = p.segments[0];
+      p.segments[0].length = upper.length = 50.0;
+      p.segments.push_back(upper);
+    }
+    p.dynamics.top_motion.type = TopMotion::Type::Sinusoid;
+    p.dynamics.top_motion.amplitude_x = 0.5;
+    p.dynamics.top_motion.amplitude_z = 0.5;
+    p.dynamics.top_motion.period = 8.0;
+    for (bool position : {false, true}) {
+      p.dynamics.top_motion.prescribe_position = position;
+      DynamicSolver2D solver(p);
+      ASSERT_TRUE(solver.advanceTo(2.0).ok);
+      EXPECT_LT(solver.jacobianFiniteDifferenceError(p.dynamics.dt), kFdRelativeTolerance)
+          << (position ? "position-fed top" : "velocity top") << (junction ? ", two segments" : "");
+    }
   }
 }

@@ -46,6 +46,11 @@ class BandedMatrix {
   int upper() const { return ku_; }
 
   void setZero();
+  /// Zero rows [first, first + count) only (all their entries in the band or pattern).
+  void setZeroRows(int first, int count);
+  /// Mark the matrix as being assembled anew without clearing it: for a caller that then writes
+  /// every entry (NewtonSystem::writesEveryBlockEntry); factorized() is false afterwards.
+  void beginAssembly() { factorized_ = false; }
   /// Element access; (i, j) must lie inside the band (checked in debug builds).
   /// LAPACK band storage: A(i, j) lives at AB(kl + ku + i - j, j) (0-based), column-major.
   /// With a block structure (setBlockStructure) the entries live in rows of 2 * block values

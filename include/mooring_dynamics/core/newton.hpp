@@ -23,8 +23,12 @@ class NewtonSystem {
   /// node and rows on the first node only. Default (0, 0): a plain band.
   virtual int blockSize() const { return 0; }
   virtual int leadingRows() const { return 0; }
-  /// Residual R(Y); when J is non-null also the Jacobian dR/dY (J is zeroed by the caller).
+  /// Residual R(Y); when J is non-null also the Jacobian dR/dY (J is zeroed by the caller,
+  /// unless writesEveryBlockEntry()).
   virtual void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) = 0;
+  /// True when evaluate() writes every entry of a block-structured J, zeroing those it leaves
+  /// (BandedMatrix::setZeroRows): the caller then skips clearing the whole matrix first.
+  virtual bool writesEveryBlockEntry() const { return false; }
   /// chi_m of eq. 39 for unknown i: the magnitude of a physically negligible change.
   virtual double scale(int i) const = 0;
   /// Human-readable name of unknown i, e.g. "node 12 (s = 5.50 m) phi".
