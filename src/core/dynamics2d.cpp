@@ -39,6 +39,10 @@ struct DynamicSolver2D::Impl {
   Mesh mesh;
   WaveField waves;
   mutable WaveVelocityCache wave_cache;  ///< wave kinematics at the nodes (cos, sin reused)
+  CurrentProfile current;                ///< problem.environment.current, components precomputed
+  /// Workspace of DynamicStepSystem::evaluate: each node's terms (nodeStepTerms), kept between
+  /// steps so that a step does not allocate them.
+  mutable std::vector<NodeTerms> node_terms;
   GeneralizedAlpha ga;
   DynamicOptions opt;
   std::function<TopInput(double)> top;
@@ -64,15 +68,15 @@ struct DynamicSolver2D::Impl {
   Water waterAt(int j, double x, double z) const {
     Water w;
     double ux, uy;
-    problem.environment.currentAt(z, ux, uy);
+    current.at(z, ux, uy);
     w.wx = ux;
     w.z = z;
-    if (problem.environment.current.size() > 1) {
+    if (current.size() > 1) {
       // Slope of the piecewise-linear profile (exact inside a table interval), as in statics.
       constexpr double kDz = 1e-6;  // [m]
       double up, um, vy;
-      problem.environment.currentAt(z + kDz, up, vy);
-      problem.environment.currentAt(z - kDz, um, vy);
+      current.at(z + kDz, up, vy);
+      current.at(z - kDz, um, vy);
       w.dwx_dz = (up - um) / (2.0 * kDz);
     }
     if (!wave_cache.empty() && z <= 0.0) {
@@ -197,7 +201,8 @@ class DynamicStepSystem : public NewtonSystem {
     }
     const StepWeights wts{ak, (1.0 - am) * c1};
     double Jl[N][2 * N];
-    terms_.resize(static_cast<std::size_t>(n));
+    std::vector<NodeTerms>& terms = im_.node_terms;
+    terms.resize(static_cast<std::size_t>(n));
     terms_material_.assign(static_cast<std::size_t>(n), -1);  // none computed yet
 
     for (int j = 0; j + 1 < n; ++j) {
@@ -214,10 +219,10 @@ class DynamicStepSystem : public NewtonSystem {
           if (terms_material_[node] != static_cast<long>(iv.material)) {
             const NodeView prev{Yp.data() + N * node, cp_[node], spr_[node], &im_.water[node]};
             nodeStepTerms(im_.problem.environment, m, now, prev, ydw_.data() + N * node, wts, J != nullptr,
-                          terms_[node]);
+                          terms[node]);
             terms_material_[node] = static_cast<long>(iv.material);
           }
-          return terms_[node];
+          return terms[node];
         };
         const NodeTerms& ta = termsOf(a, na);
         const NodeTerms& tb = termsOf(b, nb);
@@ -321,8 +326,7 @@ class DynamicStepSystem : public NewtonSystem {
   std::vector<double> cp_, spr_;  ///< cos, sin of phi at the previous level
   std::vector<double> c_, s_;     ///< cos, sin of phi at the current iterate
   Eigen::VectorXd ydw_;           ///< weighted rates (eq. 30) at the current iterate
-  std::vector<NodeTerms> terms_;   ///< each node's terms in this evaluation (nodeStepTerms)
-  std::vector<long> terms_material_;  ///< the material terms_ were computed with (-1: none)
+  std::vector<long> terms_material_;  ///< the material each node's terms were computed with (-1: none)
 };
 
 // ------------------------------------------------------------------------------------------------
@@ -372,6 +376,7 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   if (problem.environment.waves.type != WaveSpec::Type::None)
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
   im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
+  im.current = CurrentProfile(problem.environment.current);
 
   // Top motion: the 3-D source projected on the x-z plane, started at the static top (y = 0).
   const NodeState& topNode = im.statics.nodes.back();

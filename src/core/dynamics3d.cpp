@@ -42,6 +42,7 @@ struct DynamicSolver3D::Impl {
   Problem problem;
   Mesh mesh;
   WaveField waves;
+  CurrentProfile current;  ///< problem.environment.current, components precomputed
   GeneralizedAlpha ga;
   DynamicOptions opt;
   std::function<TopState(double)> top;
@@ -66,9 +67,8 @@ struct DynamicSolver3D::Impl {
 
   Water waterAt(double x, double y, double z, double time) const {
     Water w;
-    const Environment& env = problem.environment;
-    env.currentAt(z, w.w[0], w.w[1]);
-    env.currentGradientAt(z, w.dw_dz[0], w.dw_dz[1]);
+    current.at(z, w.w[0], w.w[1]);
+    current.gradientAt(z, w.dw_dz[0], w.dw_dz[1]);
     w.z = z;
     if (!waves.empty() && z <= 0.0) {
       double vx, vy, vz;
@@ -402,6 +402,7 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   }
   if (problem.environment.waves.type != WaveSpec::Type::None)
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+  im.current = CurrentProfile(problem.environment.current);
 
   const NodeState& topNode = im.statics.nodes.back();
   const TopMotion& tm = problem.dynamics.top_motion;

@@ -124,29 +124,40 @@ double Environment::seabedSlope(double x) const {
   return dzdx;
 }
 
-void Environment::currentAt(double z, double& ux, double& uy) const {
+namespace {
+
+/// The current table's interpolation, shared by Environment and CurrentProfile: n points at
+/// depth(i) [m] with velocity components comp(i, cx, cy) [m/s], linear in depth between them
+/// and held beyond the first and last. With `slope`, the vertical gradient d(ux, uy)/dz [1/s]
+/// instead: that of the interval interpolated in (see Environment::currentGradientAt).
+template <class Depth, class Comp>
+void interpolateCurrent(std::size_t n, const Depth& depth, const Comp& comp, double z, bool slope, double& ux,
+                        double& uy) {
   ux = uy = 0.0;
-  if (current.empty()) return;
+  if (n == 0 || (slope && n < 2)) return;
   const double d = std::max(0.0, -z);
-  // Interpolate the velocity components (not speed and direction) between table points.
-  auto comp = [&](const CurrentPoint& c, double& cx, double& cy) {
-    cx = c.speed * std::cos(c.direction);
-    cy = c.speed * std::sin(c.direction);
-  };
-  if (d <= current.front().depth || current.size() == 1) {
-    comp(current.front(), ux, uy);
+  if (d <= depth(0) || n == 1) {
+    if (!slope) comp(0, ux, uy);
     return;
   }
-  if (d >= current.back().depth) {
-    comp(current.back(), ux, uy);
+  if (d >= depth(n - 1) && !(slope && d == depth(n - 1))) {
+    if (!slope) comp(n - 1, ux, uy);
     return;
   }
-  for (std::size_t i = 1; i < current.size(); ++i) {
-    if (d <= current[i].depth) {
+  // d in (depth[i-1], depth[i]] uses interval i.
+  for (std::size_t i = 1; i < n; ++i) {
+    if (d <= depth(i)) {
       double ax, ay, bx, by;
-      comp(current[i - 1], ax, ay);
-      comp(current[i], bx, by);
-      const double w = (d - current[i - 1].depth) / (current[i].depth - current[i - 1].depth);
+      comp(i - 1, ax, ay);
+      comp(i, bx, by);
+      if (slope) {  // du/dz = -du/dd: depth grows downward, z upward
+        const double dd = depth(i) - depth(i - 1);  // > 0 (validated)
+        ux = -(bx - ax) / dd;
+        uy = -(by - ay) / dd;
+        return;
+      }
+      // Interpolate the velocity components (not speed and direction) between table points.
+      const double w = (d - depth(i - 1)) / (depth(i) - depth(i - 1));
       ux = ax + w * (bx - ax);
       uy = ay + w * (by - ay);
       return;
@@ -154,23 +165,54 @@ void Environment::currentAt(double z, double& ux, double& uy) const {
   }
 }
 
+}  // namespace
+
+void Environment::currentAt(double z, double& ux, double& uy) const {
+  interpolateCurrent(
+      current.size(), [this](std::size_t i) { return current[i].depth; },
+      [this](std::size_t i, double& cx, double& cy) {
+        cx = current[i].speed * std::cos(current[i].direction);
+        cy = current[i].speed * std::sin(current[i].direction);
+      },
+      z, false, ux, uy);
+}
+
 void Environment::currentGradientAt(double z, double& dux_dz, double& duy_dz) const {
-  dux_dz = duy_dz = 0.0;
-  if (current.size() < 2) return;
-  const double d = std::max(0.0, -z);
-  // Same interval choice as currentAt: d in (depth[i-1], depth[i]] uses interval i.
-  if (d <= current.front().depth || d > current.back().depth) return;
-  for (std::size_t i = 1; i < current.size(); ++i) {
-    if (d <= current[i].depth) {
-      const CurrentPoint& a = current[i - 1];
-      const CurrentPoint& b = current[i];
-      const double dd = b.depth - a.depth;  // > 0 (validated)
-      // du/dz = -du/dd: depth grows downward, z upward.
-      dux_dz = -(b.speed * std::cos(b.direction) - a.speed * std::cos(a.direction)) / dd;
-      duy_dz = -(b.speed * std::sin(b.direction) - a.speed * std::sin(a.direction)) / dd;
-      return;
-    }
+  interpolateCurrent(
+      current.size(), [this](std::size_t i) { return current[i].depth; },
+      [this](std::size_t i, double& cx, double& cy) {
+        cx = current[i].speed * std::cos(current[i].direction);
+        cy = current[i].speed * std::sin(current[i].direction);
+      },
+      z, true, dux_dz, duy_dz);
+}
+
+CurrentProfile::CurrentProfile(const std::vector<CurrentPoint>& table) {
+  for (const CurrentPoint& c : table) {
+    depth_.push_back(c.depth);
+    ux_.push_back(c.speed * std::cos(c.direction));
+    uy_.push_back(c.speed * std::sin(c.direction));
   }
+}
+
+void CurrentProfile::at(double z, double& ux, double& uy) const {
+  interpolateCurrent(
+      depth_.size(), [this](std::size_t i) { return depth_[i]; },
+      [this](std::size_t i, double& cx, double& cy) {
+        cx = ux_[i];
+        cy = uy_[i];
+      },
+      z, false, ux, uy);
+}
+
+void CurrentProfile::gradientAt(double z, double& dux_dz, double& duy_dz) const {
+  interpolateCurrent(
+      depth_.size(), [this](std::size_t i) { return depth_[i]; },
+      [this](std::size_t i, double& cx, double& cy) {
+        cx = ux_[i];
+        cy = uy_[i];
+      },
+      z, true, dux_dz, duy_dz);
 }
 
 // --- Surface buoy ----------------------------------------------------------------------------

@@ -328,6 +328,33 @@ TEST(Environment, CurrentGradientMatchesFiniteDifferences) {
   EXPECT_NEAR(gy, -0.5 / 40.0, kTol);
 }
 
+// The precomputed table of the dynamic solvers is Environment's interpolation bit for bit:
+// values and gradients on a sweep through every table point, the held ends and above the
+// surface, for an absent, a one-point and a three-point current.
+TEST(Environment, CurrentProfileEqualsEnvironmentBitForBit) {
+  const std::vector<std::vector<CurrentPoint>> tables = {
+      {}, {{0.0, 0.5, 0.3}}, {{10.0, 1.0, 0.0}, {50.0, 0.5, 0.5 * kPi}, {100.0, 0.2, kPi}}};
+  for (const auto& table : tables) {
+    Environment env;
+    env.current = table;
+    const CurrentProfile profile(table);
+    int compared = 0;
+    for (double z = 5.0; z >= -120.0; z -= 2.5) {  // steps of 2.5 m: hits 10, 50 and 100 m exactly
+      double ex, ey, px, py, gx, gy, qx, qy;
+      env.currentAt(z, ex, ey);
+      profile.at(z, px, py);
+      env.currentGradientAt(z, gx, gy);
+      profile.gradientAt(z, qx, qy);
+      EXPECT_EQ(px, ex) << "z " << z << ", " << table.size() << " points";
+      EXPECT_EQ(py, ey) << "z " << z << ", " << table.size() << " points";
+      EXPECT_EQ(qx, gx) << "z " << z << ", " << table.size() << " points";
+      EXPECT_EQ(qy, gy) << "z " << z << ", " << table.size() << " points";
+      ++compared;
+    }
+    EXPECT_EQ(compared, 51);
+  }
+}
+
 TEST(Environment, UniformOrAbsentCurrentHasNoGradient) {
   Environment env;
   double gx = 1.0, gy = 1.0;

@@ -70,6 +70,23 @@ struct CurrentPoint {
   double direction = 0.0;      ///< direction the water flows toward, counterclockwise from +x (east) [rad]
 };
 
+/// A current table (Environment::current) with its velocity components computed once: at() and
+/// gradientAt() are Environment::currentAt and currentGradientAt, bit for bit, without a cosine
+/// and sine per table point and call (the dynamic solvers ask at every node and iteration).
+class CurrentProfile {
+ public:
+  CurrentProfile() = default;
+  explicit CurrentProfile(const std::vector<CurrentPoint>& table);
+  /// Current velocity (east, north) [m/s] at elevation z [m].
+  void at(double z, double& ux, double& uy) const;
+  /// Its vertical gradient d(ux, uy)/dz [1/s].
+  void gradientAt(double z, double& dux_dz, double& duy_dz) const;
+  std::size_t size() const { return depth_.size(); }
+
+ private:
+  std::vector<double> depth_, ux_, uy_;  ///< table depths [m] and velocity components [m/s]
+};
+
 /// Bathymetry on a regular grid in x (east) and y (north), bilinear between the grid points and
 /// held at the edge values outside (problem file `environment.seabed.grid_file`).
 struct SeabedGrid {
