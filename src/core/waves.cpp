@@ -423,6 +423,16 @@ inline double total(const Lane& v) { return v; }
 constexpr std::size_t kLanes = 1;
 #endif
 
+// No contraction of a * b + c into a fused multiply-add in the sums below: AVX-512 has the
+// instruction and the other versions do not, and one rounding instead of two would make the
+// sums depend on the machine.
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#elif defined(__GNUC__)
+#pragma GCC push_options
+#pragma GCC optimize("fp-contract=off")
+#endif
+
 /// Even and odd parts of the Taylor series of e^{u} to the power u^Order (Order odd):
 /// cos, sin of u are (even(-u^2), odd(-u^2)) and e^{+-u} = even(u^2) +- odd(u^2). The first
 /// term left out is below u^(Order+1) / (Order+1)!: for Order 11 and |u| <= kTaylorRadius = 0.2,
@@ -495,6 +505,9 @@ MD_WAVE_SIMD_CLONES void componentSums(const SumInputs& in, std::size_t n, doubl
 }
 
 #undef MD_LOAD
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC pop_options
+#endif
 
 }  // namespace
 
