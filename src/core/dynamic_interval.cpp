@@ -10,8 +10,8 @@ namespace {
 
 /// Distributed load (f1, f2) per unit length at a node (eqs. 1-2: wet weight less the seabed
 /// reaction of eqs. 35-36 with the smoothed onset, drag on the velocity relative to the water)
-/// and its gradient along the node's unknowns; distributedLoad and seabedReaction of
-/// equations2d_dynamic.hpp differentiated by hand.
+/// and, when df1 is non-null, its gradient along the node's unknowns; distributedLoad and
+/// seabedReaction of equations2d_dynamic.hpp differentiated by hand.
 void nodeLoad(const Environment& env, const Material& m, const NodeView& nv, double& f1, double& f2, double* df1,
               double* df2) {
   const double* y = nv.y;
@@ -54,6 +54,7 @@ void nodeLoad(const Environment& env, const Material& m, const NodeView& nv, dou
   const double qt = signedSquare(ur), qn = signedSquare(vr);
   f1 = -weight * c - Kt * qt * stretch;
   f2 = weight * s - Kn * qn * stretch;
+  if (!df1) return;
   // Gradients: d(u|u|) = 2 |u| du; dstretch/deps = 1 / (2 stretch).
   const double gt = Kt * 2.0 * std::abs(ur) * stretch, gn = Kn * 2.0 * std::abs(vr) * stretch;
   for (int k = 0; k < N; ++k) {
@@ -110,9 +111,31 @@ void nodeInertia(const Environment& env, const Material& m, const NodeView& nv, 
 
 }  // namespace
 
+void nodeLoadValue(const Environment& env, const Material& m, const NodeView& nv, double& f1, double& f2) {
+  nodeLoad(env, m, nv, f1, f2, nullptr, nullptr);
+}
+
+void intervalSpatialRows(const Material& m, double h, const NodeView& a, const NodeView& b, double f1a, double f2a,
+                         double f1b, double f2b, double* sp) {
+  const double* Ya = a.y;
+  const double* Yb = b.y;
+  const double Ta = eq2d::tension(m, Ya[EPS]), Tb = eq2d::tension(m, Yb[EPS]);
+  const double pa3 = 1.0 + Ya[EPS], pb3 = 1.0 + Yb[EPS];
+  const double dphi = Yb[PHI] - Ya[PHI];
+  sp[0] = Tb - Ta - 0.5 * (Ya[SN] + Yb[SN]) * dphi + 0.5 * h * (f1a + f1b);   // eq. 1
+  sp[1] = Yb[SN] - Ya[SN] + 0.5 * (Ta + Tb) * dphi + 0.5 * h * (f2a + f2b);   // eq. 2
+  sp[2] = Yb[U] - Ya[U] - 0.5 * (Ya[V] + Yb[V]) * dphi;                       // eq. 3
+  sp[3] = Yb[V] - Ya[V] + 0.5 * (Ya[U] + Yb[U]) * dphi;                       // eq. 4
+  sp[4] = dphi - 0.5 * h * (Ya[OMEGA] + Yb[OMEGA]);                           // eq. 5
+  sp[5] = m.EI * (Yb[OMEGA] - Ya[OMEGA]) +
+          0.5 * h * (Ya[SN] * pa3 * pa3 * pa3 + Yb[SN] * pb3 * pb3 * pb3);    // eq. 6
+  sp[6] = Yb[X] - Ya[X] - 0.5 * h * (pa3 * a.s + pb3 * b.s);                  // eq. 42
+  sp[7] = Yb[Z] - Ya[Z] - 0.5 * h * (pa3 * a.c + pb3 * b.c);
+}
+
 void nodeStepTerms(const Environment& env, const Material& m, const NodeView& now, const NodeView& prev,
                    const double* yd, const StepWeights& wts, bool jacobian, NodeTerms& out) {
-  nodeLoad(env, m, now, out.f1, out.f2, out.df1, out.df2);
+  nodeLoad(env, m, now, out.f1, out.f2, jacobian ? out.df1 : nullptr, jacobian ? out.df2 : nullptr);
   // Inertia at both levels applied to the weighted rate (eq. 13).
   nodeInertia(env, m, now, yd, wts.wr, true, out.I, jacobian ? out.dI : nullptr);
   nodeInertia(env, m, prev, yd, wts.wr, false, out.Ip, jacobian ? out.dIp : nullptr);
@@ -139,15 +162,7 @@ void intervalStepRows(const Material& m, double h, const NodeView& a, const Node
   const double f1a = ta.f1, f2a = ta.f2, f1b = tb.f1, f2b = tb.f2;
   const double *df1a = ta.df1, *df2a = ta.df2, *df1b = tb.df1, *df2b = tb.df2;
   double sp[N];
-  sp[0] = Tb - Ta - 0.5 * (Ya[SN] + Yb[SN]) * dphi + 0.5 * h * (f1a + f1b);   // eq. 1
-  sp[1] = Yb[SN] - Ya[SN] + 0.5 * (Ta + Tb) * dphi + 0.5 * h * (f2a + f2b);   // eq. 2
-  sp[2] = Yb[U] - Ya[U] - 0.5 * (Ya[V] + Yb[V]) * dphi;                       // eq. 3
-  sp[3] = Yb[V] - Ya[V] + 0.5 * (Ya[U] + Yb[U]) * dphi;                       // eq. 4
-  sp[4] = dphi - 0.5 * h * (Ya[OMEGA] + Yb[OMEGA]);                           // eq. 5
-  sp[5] = m.EI * (Yb[OMEGA] - Ya[OMEGA]) +
-          0.5 * h * (Ya[SN] * pa3 * pa3 * pa3 + Yb[SN] * pb3 * pb3 * pb3);    // eq. 6
-  sp[6] = Yb[X] - Ya[X] - 0.5 * h * (pa3 * a.s + pb3 * b.s);                  // eq. 42
-  sp[7] = Yb[Z] - Ya[Z] - 0.5 * h * (pa3 * a.c + pb3 * b.c);
+  intervalSpatialRows(m, h, a, b, f1a, f2a, f1b, f2b, sp);
   // Inertia at both levels applied to the weighted rate, averaged over the nodes (eq. 13).
   const double *ia = ta.I, *ib = tb.I, *qa = ta.Ip, *qb = tb.Ip;
   const double(*dia)[N] = ta.dI;

@@ -53,6 +53,7 @@ struct DynamicSolver2D::Impl {
   Eigen::VectorXd Y, Yd;
   std::vector<Water> water;     ///< water velocity at each node at time t
   Eigen::VectorXd S;            ///< spatial rows of each interval at time t (8 per interval)
+  std::vector<double> cos_phi, sin_phi;  ///< of each node's inclination at time t
 
   double chi[N];
   Totals totals;
@@ -95,18 +96,39 @@ struct DynamicSolver2D::Impl {
   }
 
   /// Spatial rows of every interval at state y (double).
-  void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out) const {
+  /// Spatial rows of every interval at the accepted state y (double), and cos, sin of every
+  /// node's inclination there (the next step's previous level).
+  void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out, std::vector<double>& c,
+                   std::vector<double>& s) const {
     const int n = nodes();
     out.setZero(N * (n - 1));
+    c.resize(static_cast<std::size_t>(n));
+    s.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      c[static_cast<std::size_t>(j)] = std::cos(y[N * j + PHI]);
+      s[static_cast<std::size_t>(j)] = std::sin(y[N * j + PHI]);
+    }
+    // Each node's load once for the intervals of one material it belongs to.
+    double f1b = 0.0, f2b = 0.0;
+    long load_material = -1;  // that of the load of node j kept from the interval before
     for (int j = 0; j + 1 < n; ++j) {
       const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
+      const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
       const double* ya = y.data() + N * j;
       const double* yb = ya + N;
       double* r = out.data() + N * j;
-      if (iv.h > 0.0)
-        intervalSpatial(problem.environment, problem.materials[iv.material], iv.h, ya, yb, w[j], w[j + 1], r);
-      else
-        junctionForces(problem, iv, mat(j), mat(j + 1), ya, yb, w[static_cast<std::size_t>(j)], r);
+      if (iv.h > 0.0) {
+        const Material& m = problem.materials[iv.material];
+        const NodeView na{ya, c[a], s[a], &w[a]}, nb{yb, c[b], s[b], &w[b]};
+        double f1a = f1b, f2a = f2b;
+        if (load_material != static_cast<long>(iv.material)) nodeLoadValue(problem.environment, m, na, f1a, f2a);
+        nodeLoadValue(problem.environment, m, nb, f1b, f2b);
+        load_material = static_cast<long>(iv.material);
+        intervalSpatialRows(m, iv.h, na, nb, f1a, f2a, f1b, f2b, r);
+      } else {
+        junctionForces(problem, iv, mat(j), mat(j + 1), ya, yb, w[a], r);
+        load_material = -1;
+      }
     }
   }
 };
@@ -120,14 +142,6 @@ class DynamicStepSystem : public NewtonSystem {
  public:
   DynamicStepSystem(const DynamicSolver2D::Impl& im, double t_new, double dt, const TopInput& top)
       : im_(im), t_(t_new), dt_(dt), top_(top) {
-    // cos and sin of every node's inclination at the previous level: fixed during the step.
-    const int n = im_.nodes();
-    cp_.resize(static_cast<std::size_t>(n));
-    spr_.resize(static_cast<std::size_t>(n));
-    for (int j = 0; j < n; ++j) {
-      cp_[static_cast<std::size_t>(j)] = std::cos(im_.Y[N * j + PHI]);
-      spr_[static_cast<std::size_t>(j)] = std::sin(im_.Y[N * j + PHI]);
-    }
   }
 
   int size() const override { return N * im_.nodes(); }
@@ -217,7 +231,7 @@ class DynamicStepSystem : public NewtonSystem {
         const Material& m = im_.problem.materials[iv.material];
         auto termsOf = [&](std::size_t node, const NodeView& now) -> const NodeTerms& {
           if (terms_material_[node] != static_cast<long>(iv.material)) {
-            const NodeView prev{Yp.data() + N * node, cp_[node], spr_[node], &im_.water[node]};
+            const NodeView prev{Yp.data() + N * node, im_.cos_phi[node], im_.sin_phi[node], &im_.water[node]};
             nodeStepTerms(im_.problem.environment, m, now, prev, ydw_.data() + N * node, wts, J != nullptr,
                           terms[node]);
             terms_material_[node] = static_cast<long>(iv.material);
@@ -323,7 +337,6 @@ class DynamicStepSystem : public NewtonSystem {
   double t_, dt_;
   TopInput top_;
   mutable std::vector<Water> water_;
-  std::vector<double> cp_, spr_;  ///< cos, sin of phi at the previous level
   std::vector<double> c_, s_;     ///< cos, sin of phi at the current iterate
   Eigen::VectorXd ydw_;           ///< weighted rates (eq. 30) at the current iterate
   std::vector<long> terms_material_;  ///< the material each node's terms were computed with (-1: none)
@@ -402,7 +415,7 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   im.Y = stateFromStatic(im.statics);
   im.Yd = Eigen::VectorXd::Zero(im.Y.size());
   im.waterField(im.Y, 0.0, im.water);
-  im.spatialRows(im.Y, im.water, im.S);
+  im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
 
   // Error scales chi_m of eq. 39.
   double Tc = 1.0, stiffest = 0.0;
@@ -488,7 +501,7 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   im.Y = Y;
   im.t = t_new;
   im.water = sys.water();
-  im.spatialRows(im.Y, im.water, im.S);
+  im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
   ++rep.steps;
   ++im.totals.steps;
   rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;

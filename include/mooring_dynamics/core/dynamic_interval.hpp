@@ -39,6 +39,15 @@ struct NodeTerms {
   double dI[4][N] = {}, dIp[4][N] = {};  ///< their gradients (with the Jacobian only)
 };
 
+/// Distributed load (f1, f2) per unit length at a node of material m [N/m] (eqs. 1-2, 35-36):
+/// the value of NodeTerms::f1, f2 without the gradients.
+void nodeLoadValue(const Environment& env, const Material& m, const NodeView& nv, double& f1, double& f2);
+
+/// Spatial rows sp[0..7] of interval (a, b) of length h > 0 and material m, K dY/ds + F times h
+/// (eqs. 1-6, 42 on the half grid, eq. 11), from its nodes' loads (nodeLoadValue).
+void intervalSpatialRows(const Material& m, double h, const NodeView& a, const NodeView& b, double f1a, double f2a,
+                         double f1b, double f2b, double* sp);
+
 /// The terms of a node of material m: its state now and at the previous level, and its weighted
 /// rate yd (weight wts.wr along its own unknown). Gradients only when `jacobian` is true.
 void nodeStepTerms(const Environment& env, const Material& m, const NodeView& now, const NodeView& prev,
