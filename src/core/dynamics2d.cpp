@@ -1,11 +1,11 @@
 #include "mooring_dynamics/core/dynamics2d.hpp"
 
-#include <cstdlib>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "mooring_dynamics/core/adaptive_mesh.hpp"
 #include "mooring_dynamics/core/dynamic_run.hpp"
@@ -59,8 +59,6 @@ struct DynamicSolver2D::Impl {
   Totals totals;
   BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
   double factored_dt = 0.0;    ///< step size the factorization in newton_matrix belongs to [s]
-  Eigen::VectorXd Yd_prev;     ///< rate before the last accepted step (second-order predictor)
-  double last_dt = 0.0;        ///< size of the last accepted step [s]
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
@@ -249,40 +247,20 @@ class DynamicStepSystem : public NewtonSystem {
         continue;
       }
       // Junction (pin) rows: few, left to automatic differentiation (only their non-zero
-      // entries written).
-      if (J) J->setZeroRows(row, N);
-      AD16 y[2 * N], ydw[2 * N], yp[2 * N];
-      for (int k = 0; k < 2 * N; ++k) {
-        const int idx = N * j + k;
-        y[k] = AD16(Y[idx], 2 * N, k);
-        const AD16 yd = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
-        ydw[k] = (1.0 - am) * yd + am * Ydp[idx];  // weighted rate of eq. 30
-        yp[k] = AD16(Yp[idx]);
-        yp[k].derivatives().setZero(2 * N);
-      }
-      const Water& wa = water_[a];
-      AD16 sp[N], in1[N], in0[N], r[N];
-      junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, sp);
-      junctionInertia(im_.problem, iv, y, ydw, in1);
-      junctionInertia(im_.problem, iv, yp, ydw, in0);
-      junctionConstraints(y, y + N, sp);
-      for (int q = 2; q < N; ++q) in1[q] = in0[q] = AD16(0.0);
-      constexpr int kJunctionWeighted = 2;  // the force balance; the constraints hold at the new level
-      for (int q = 0; q < N; ++q) {
-        if (q < kJunctionWeighted)
-          // Eq. 30 with the mass matrix averaged between the levels (eq. 31) by alpha_k, not the
-          // printed alpha_m: the weighted rate approximates dY/dt at the alpha_k level, and with
-          // alpha_m weights a state-dependent M costs second order (measured slope 1.6 for
-          // lambda_inf = -0.5 on a cable, 2.0 with alpha_k; test_dynamics2d).
-          r[q] = (1.0 - ak) * in1[q] + ak * in0[q] + (1.0 - ak) * sp[q] + ak * im_.S[N * j + q];
-        else
-          r[q] = sp[q];  // constraints at the new time level
-        R[row + q] = r[q].value();
-        if (J)
+      // entries written); in double when only the residual is asked for.
+      if (J) {
+        J->setZeroRows(row, N);
+        AD16 r[N];
+        junctionRows(j, iv, Y, c1, c0, r);
+        for (int q = 0; q < N; ++q) {
+          R[row + q] = r[q].value();
           for (int k = 0; k < 2 * N; ++k) {
             const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
             if (d != 0.0) J->at(row + q, N * j + k) = d;
           }
+        }
+      } else {
+        junctionRows(j, iv, Y, c1, c0, R.data() + row);
       }
     }
 
@@ -324,6 +302,46 @@ class DynamicStepSystem : public NewtonSystem {
       if (J)
         for (int k = 0; k < N; ++k)
           if (r[q].derivatives()[k] != 0.0) J->at(row + q, top + k) = r[q].derivatives()[k];
+    }
+  }
+
+  /// Rows r[0..7] of junction interval j at iterate Y, in scalar type S (AD16 for the
+  /// Jacobian, double for the residual alone); c1, c0: the rate of eq. 26, Yd = c1 (Y - Yp) - c0 Ydp.
+  template <class S>
+  void junctionRows(int j, const MeshInterval& iv, const Eigen::VectorXd& Y, double c1, double c0, S* r) const {
+    const Eigen::VectorXd& Yp = im_.Y;
+    const Eigen::VectorXd& Ydp = im_.Yd;
+    const double am = im_.ga.alpha_m, ak = im_.ga.alpha_k;
+    S y[2 * N], ydw[2 * N], yp[2 * N];
+    for (int k = 0; k < 2 * N; ++k) {
+      const int idx = N * j + k;
+      if constexpr (std::is_same_v<S, double>) {
+        y[k] = Y[idx];
+        yp[k] = Yp[idx];
+      } else {
+        y[k] = S(Y[idx], 2 * N, k);
+        yp[k] = S(Yp[idx]);
+        yp[k].derivatives().setZero(2 * N);
+      }
+      const S yd = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
+      ydw[k] = (1.0 - am) * yd + am * Ydp[idx];  // weighted rate of eq. 30
+    }
+    const Water& wa = water_[static_cast<std::size_t>(j)];
+    S sp[N], in1[N], in0[N];
+    junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, sp);
+    junctionInertia(im_.problem, iv, y, ydw, in1);
+    junctionInertia(im_.problem, iv, yp, ydw, in0);
+    junctionConstraints(y, y + N, sp);
+    constexpr int kJunctionWeighted = 2;  // the force balance; the constraints hold at the new level
+    for (int q = 0; q < N; ++q) {
+      if (q < kJunctionWeighted)
+        // Eq. 30 with the mass matrix averaged between the levels (eq. 31) by alpha_k, not the
+        // printed alpha_m: the weighted rate approximates dY/dt at the alpha_k level, and with
+        // alpha_m weights a state-dependent M costs second order (measured slope 1.6 for
+        // lambda_inf = -0.5 on a cable, 2.0 with alpha_k; test_dynamics2d).
+        r[q] = (1.0 - ak) * in1[q] + ak * in0[q] + (1.0 - ak) * sp[q] + ak * im_.S[N * j + q];
+      else
+        r[q] = sp[q];  // constraints at the new time level
     }
   }
 
@@ -475,8 +493,6 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   const TopInput top = im.top(t_new);
   DynamicStepSystem sys(im, t_new, dt, top);
   Eigen::VectorXd Y = im.Y + dt * im.Yd;  // predictor: constant rate
-  if (std::getenv("MD_PRED2") && im.last_dt == dt && im.Yd_prev.size() == im.Yd.size())
-    Y += std::atof(std::getenv("MD_PRED2")) * dt * (im.Yd - im.Yd_prev);
   const NewtonOptions no = stepNewtonOptions(im.opt);
   // A kept factorization (modified Newton) belongs to one step size.
   if (dt != im.factored_dt) im.newton_matrix.setZero();
@@ -495,8 +511,6 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   }
   // Accept: rates from eq. 26, water and spatial rows at the new level.
   const double g = im.ga.gamma;
-  im.Yd_prev = im.Yd;
-  im.last_dt = dt;
   im.Yd = (Y - im.Y) / (g * dt) - ((1.0 - g) / g) * im.Yd;
   im.Y = Y;
   im.t = t_new;
