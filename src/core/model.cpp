@@ -126,38 +126,38 @@ double Environment::seabedSlope(double x) const {
 
 namespace {
 
-/// The current table's interpolation, shared by Environment and CurrentProfile: n points at
-/// depth(i) [m] with velocity components comp(i, cx, cy) [m/s], linear in depth between them
-/// and held beyond the first and last. With `slope`, the vertical gradient d(ux, uy)/dz [1/s]
-/// instead: that of the interval interpolated in (see Environment::currentGradientAt).
-template <class Depth, class Comp>
-void interpolateCurrent(std::size_t n, const Depth& depth, const Comp& comp, double z, bool slope, double& ux,
-                        double& uy) {
+/// The current table's interpolation, shared by Environment and CurrentProfile: the table's
+/// size(), depth(i) [m] and comp(i, cx, cy) [m/s], linear in depth between its points and held
+/// beyond the first and last. With `slope`, the vertical gradient d(ux, uy)/dz [1/s] instead:
+/// that of the interval interpolated in (see Environment::currentGradientAt).
+template <class Table>
+void interpolateCurrent(const Table& table, double z, bool slope, double& ux, double& uy) {
   ux = uy = 0.0;
+  const std::size_t n = table.size();
   if (n == 0 || (slope && n < 2)) return;
   const double d = std::max(0.0, -z);
-  if (d <= depth(0) || n == 1) {
-    if (!slope) comp(0, ux, uy);
+  if (d <= table.depth(0) || n == 1) {
+    if (!slope) table.comp(0, ux, uy);
     return;
   }
-  if (d >= depth(n - 1) && !(slope && d == depth(n - 1))) {
-    if (!slope) comp(n - 1, ux, uy);
+  if (d >= table.depth(n - 1) && !(slope && d == table.depth(n - 1))) {
+    if (!slope) table.comp(n - 1, ux, uy);
     return;
   }
   // d in (depth[i-1], depth[i]] uses interval i.
   for (std::size_t i = 1; i < n; ++i) {
-    if (d <= depth(i)) {
+    if (d <= table.depth(i)) {
       double ax, ay, bx, by;
-      comp(i - 1, ax, ay);
-      comp(i, bx, by);
+      table.comp(i - 1, ax, ay);
+      table.comp(i, bx, by);
       if (slope) {  // du/dz = -du/dd: depth grows downward, z upward
-        const double dd = depth(i) - depth(i - 1);  // > 0 (validated)
+        const double dd = table.depth(i) - table.depth(i - 1);  // > 0 (validated)
         ux = -(bx - ax) / dd;
         uy = -(by - ay) / dd;
         return;
       }
       // Interpolate the velocity components (not speed and direction) between table points.
-      const double w = (d - depth(i - 1)) / (depth(i) - depth(i - 1));
+      const double w = (d - table.depth(i - 1)) / (table.depth(i) - table.depth(i - 1));
       ux = ax + w * (bx - ax);
       uy = ay + w * (by - ay);
       return;
@@ -165,26 +165,25 @@ void interpolateCurrent(std::size_t n, const Depth& depth, const Comp& comp, dou
   }
 }
 
+/// Environment::current as interpolateCurrent's table: components from speed and direction.
+struct PointTable {
+  const std::vector<CurrentPoint>& points;
+  std::size_t size() const { return points.size(); }
+  double depth(std::size_t i) const { return points[i].depth; }
+  void comp(std::size_t i, double& cx, double& cy) const {
+    cx = points[i].speed * std::cos(points[i].direction);
+    cy = points[i].speed * std::sin(points[i].direction);
+  }
+};
+
 }  // namespace
 
 void Environment::currentAt(double z, double& ux, double& uy) const {
-  interpolateCurrent(
-      current.size(), [this](std::size_t i) { return current[i].depth; },
-      [this](std::size_t i, double& cx, double& cy) {
-        cx = current[i].speed * std::cos(current[i].direction);
-        cy = current[i].speed * std::sin(current[i].direction);
-      },
-      z, false, ux, uy);
+  interpolateCurrent(PointTable{current}, z, false, ux, uy);
 }
 
 void Environment::currentGradientAt(double z, double& dux_dz, double& duy_dz) const {
-  interpolateCurrent(
-      current.size(), [this](std::size_t i) { return current[i].depth; },
-      [this](std::size_t i, double& cx, double& cy) {
-        cx = current[i].speed * std::cos(current[i].direction);
-        cy = current[i].speed * std::sin(current[i].direction);
-      },
-      z, true, dux_dz, duy_dz);
+  interpolateCurrent(PointTable{current}, z, true, dux_dz, duy_dz);
 }
 
 CurrentProfile::CurrentProfile(const std::vector<CurrentPoint>& table) {
@@ -195,24 +194,10 @@ CurrentProfile::CurrentProfile(const std::vector<CurrentPoint>& table) {
   }
 }
 
-void CurrentProfile::at(double z, double& ux, double& uy) const {
-  interpolateCurrent(
-      depth_.size(), [this](std::size_t i) { return depth_[i]; },
-      [this](std::size_t i, double& cx, double& cy) {
-        cx = ux_[i];
-        cy = uy_[i];
-      },
-      z, false, ux, uy);
-}
+void CurrentProfile::at(double z, double& ux, double& uy) const { interpolateCurrent(*this, z, false, ux, uy); }
 
 void CurrentProfile::gradientAt(double z, double& dux_dz, double& duy_dz) const {
-  interpolateCurrent(
-      depth_.size(), [this](std::size_t i) { return depth_[i]; },
-      [this](std::size_t i, double& cx, double& cy) {
-        cx = ux_[i];
-        cy = uy_[i];
-      },
-      z, true, dux_dz, duy_dz);
+  interpolateCurrent(*this, z, true, dux_dz, duy_dz);
 }
 
 // --- Surface buoy ----------------------------------------------------------------------------

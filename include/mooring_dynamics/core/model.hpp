@@ -82,6 +82,12 @@ class CurrentProfile {
   /// Its vertical gradient d(ux, uy)/dz [1/s].
   void gradientAt(double z, double& dux_dz, double& duy_dz) const;
   std::size_t size() const { return depth_.size(); }
+  /// The table's depth [m] and velocity components [m/s] at point i.
+  double depth(std::size_t i) const { return depth_[i]; }
+  void comp(std::size_t i, double& cx, double& cy) const {
+    cx = ux_[i];
+    cy = uy_[i];
+  }
 
  private:
   std::vector<double> depth_, ux_, uy_;  ///< table depths [m] and velocity components [m/s]
