@@ -1,0 +1,317 @@
+// WaveVelocityCache (include/mooring_dynamics/core/waves.hpp): the wave velocity at the nodes of
+// the dynamic solver, the sum over a realized sea's components without transcendental functions
+// per component, node and evaluation. See docs/method.md, "Wave kinematics".
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "mooring_dynamics/core/waves.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+namespace {
+
+// The component sums are compiled for the baseline instruction set, with AVX2 and with
+// AVX-512 (function multiversioning, as the elimination kernels of block_lu.hpp); all do the
+// same operations in the same order (eight components per lane group in every version, which
+// the narrower instruction sets split), so the results do not depend on the machine.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(MD_NO_MULTIVERSION)
+#define MD_WAVE_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define MD_WAVE_SIMD_CLONES
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+typedef double Lane __attribute__((vector_size(64), aligned(8), may_alias));  // eight components
+#define MD_LOAD(p) (*reinterpret_cast<const Lane*>(p))
+inline double total(const Lane& v) { return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7])); }
+constexpr std::size_t kLanes = 8;
+#else
+typedef double Lane;
+#define MD_LOAD(p) (*(p))
+inline double total(const Lane& v) { return v; }
+constexpr std::size_t kLanes = 1;
+#endif
+
+// No contraction of a * b + c into a fused multiply-add in the sums below: AVX-512 has the
+// instruction and the other versions do not, and one rounding instead of two would make the
+// sums depend on the machine.
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#elif defined(__GNUC__)
+#pragma GCC push_options
+#pragma GCC optimize("fp-contract=off")
+#endif
+
+/// Even and odd parts of the Taylor series of e^{u} to the power u^Order (Order odd):
+/// cos, sin of u are (even(-u^2), odd(-u^2)) and e^{+-u} = even(u^2) +- odd(u^2). The first
+/// term left out is below u^(Order+1) / (Order+1)!: for Order 11 and |u| <= kTaylorRadius = 0.2,
+/// 9e-18; for Order 7 and |u| <= kShortTaylorRadius = 0.02, 6e-19 (both under the rounding of
+/// the unit first term, 1.1e-16).
+template <int Order, class T>
+inline void taylorParts(const T& u, const T& u2, T& even, T& odd) {
+  static_assert(Order == 7 || Order == 11, "Taylor order 7 or 11");
+  if constexpr (Order == 11) {
+    even = 1.0 + u2 * (1.0 / 2 + u2 * (1.0 / 24 + u2 * (1.0 / 720 + u2 * (1.0 / 40320 + u2 * (1.0 / 3628800)))));
+    odd = u * (1.0 + u2 * (1.0 / 6 + u2 * (1.0 / 120 + u2 * (1.0 / 5040 + u2 * (1.0 / 362880 + u2 * (1.0 / 39916800))))));
+  } else {
+    even = 1.0 + u2 * (1.0 / 2 + u2 * (1.0 / 24 + u2 * (1.0 / 720)));
+    odd = u * (1.0 + u2 * (1.0 / 6 + u2 * (1.0 / 120 + u2 * (1.0 / 5040))));
+  }
+}
+
+/// The twelve sums (WaveVelocityCache's order) over components [0, n), n a multiple of kLanes,
+/// for a point displaced by (dx, dz) from its reference, with Taylor series of order Order.
+/// The reference values of [0, n) (cos_b, sin_b, ep, em) are overwritten with those at the
+/// displaced point: the point's reference follows it.
+struct SumInputs {
+  const double *k, *kx, *cos_a, *sin_a;
+  double *cos_b, *sin_b, *ep, *em;
+  const double* cx[6];
+  const double* cz[6];
+};
+template <int Order>
+MD_WAVE_SIMD_CLONES void componentSums(const SumInputs& in, std::size_t n, double dx, double dz, double* out) {
+  Lane sx[6], sz[6];
+  for (int q = 0; q < 6; ++q) sx[q] = sz[q] = MD_LOAD(in.k) * 0.0;
+  for (std::size_t i = 0; i < n; i += kLanes) {
+    // e^{+-k dz}: the exponentials E+- carried from the reference elevation.
+    const Lane u = MD_LOAD(in.k + i) * dz;
+    Lane ev, od;
+    taylorParts<Order>(u, u * u, ev, od);
+    const Lane Ep = MD_LOAD(in.ep + i) * (ev + od), Em = MD_LOAD(in.em + i) * (ev - od);
+    const Lane ch = Ep + Em, sh = Ep - Em;
+    // cos, sin of kx dx: the phase B carried from the reference abscissa, then A added.
+    const Lane d = MD_LOAD(in.kx + i) * dx;
+    Lane cd, sd;
+    taylorParts<Order>(d, -(d * d), cd, sd);
+    const Lane cb = MD_LOAD(in.cos_b + i), sb = MD_LOAD(in.sin_b + i);
+    const Lane cbx = cb * cd - sb * sd, sbx = sb * cd + cb * sd;
+    *reinterpret_cast<Lane*>(in.cos_b + i) = cbx;
+    *reinterpret_cast<Lane*>(in.sin_b + i) = sbx;
+    *reinterpret_cast<Lane*>(in.ep + i) = Ep;
+    *reinterpret_cast<Lane*>(in.em + i) = Em;
+    const Lane ca = MD_LOAD(in.cos_a + i), sa = MD_LOAD(in.sin_a + i);
+    const Lane cth = cbx * ca - sbx * sa, sth = sbx * ca + cbx * sa;
+    const Lane p1 = ch * cth, p2 = ch * sth, p3 = sh * cth, p4 = sh * sth;
+    // vx ~ ch cos(th), vz ~ sh sin(th); d/dx turns cos into -sin (times kx), d/dz ch into sh.
+    sx[0] += MD_LOAD(in.cx[0] + i) * p1;
+    sx[1] -= MD_LOAD(in.cx[1] + i) * p2;
+    sx[2] += MD_LOAD(in.cx[2] + i) * p3;
+    sx[3] -= MD_LOAD(in.cx[3] + i) * p1;
+    sx[4] -= MD_LOAD(in.cx[4] + i) * p4;
+    sx[5] += MD_LOAD(in.cx[5] + i) * p1;
+    sz[0] += MD_LOAD(in.cz[0] + i) * p4;
+    sz[1] += MD_LOAD(in.cz[1] + i) * p3;
+    sz[2] += MD_LOAD(in.cz[2] + i) * p2;
+    sz[3] -= MD_LOAD(in.cz[3] + i) * p4;
+    sz[4] += MD_LOAD(in.cz[4] + i) * p1;
+    sz[5] += MD_LOAD(in.cz[5] + i) * p4;
+  }
+  for (int q = 0; q < 6; ++q) {
+    out[q] = total(sx[q]);
+    out[6 + q] = total(sz[q]);
+  }
+}
+
+#undef MD_LOAD
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC pop_options
+#endif
+
+}  // namespace
+
+WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points) : field_(field) {
+  if (empty()) return;
+  const WaveField& f = *field_;
+  nc_ = f.components_.size();
+  np_ = (nc_ + kLanes - 1) / kLanes * kLanes;
+  const double h = f.depth_;
+  // One component's constants before sorting: the depth factors as A (E+ +- E-) with
+  // E+- = e^{+-k (z + o+-)}: deep water (1 - e^{-2kh})^{-1} (e^{kz} +- e^{-k(z + 2h)}), else
+  // (2 sinh kh)^{-1} (e^{k(z + h)} +- e^{-k(z + h)}); every exponent stays in range.
+  struct Comp {
+    double k, kx, omega, phase, aw, cd, A, op, om, z_skip, coth;
+  };
+  std::vector<Comp> comps;
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const WaveComponent& c = f.components_[i];
+    const WaveField::Kinematics& q = f.kin_[i];
+    Comp m{};
+    m.k = c.k;
+    m.kx = c.k * q.cd;
+    m.omega = c.omega;
+    m.phase = c.phase;
+    m.aw = q.aw;
+    m.cd = q.cd;
+    if (q.deep) {
+      m.A = 1.0 / q.den;
+      m.op = 0.0;
+      m.om = 2.0 * h;
+      m.z_skip = q.z_skip;
+      m.coth = (1.0 + q.e2kh) / q.den;
+    } else if (q.den > 0.0) {
+      m.A = 0.5 / q.den;
+      m.op = m.om = h;
+      m.z_skip = -std::numeric_limits<double>::infinity();
+      m.coth = 1.0 / std::tanh(c.k * h);
+    } else {  // k h = 0: no velocity (a omega = 0)
+      m.A = 0.0;
+      m.op = m.om = h;
+      m.z_skip = -std::numeric_limits<double>::infinity();
+      m.coth = 0.0;
+    }
+    comps.push_back(m);
+  }
+  std::stable_sort(comps.begin(), comps.end(), [](const Comp& a, const Comp& b) { return a.z_skip < b.z_skip; });
+  // Bound on the velocity's third derivatives (linearRadius).
+  double g3 = 0.0;
+  for (const Comp& c : comps) g3 += std::abs(c.aw) * c.k * c.k * c.k * c.coth;
+  const double third = 2.0 * std::sqrt(2.0) * g3 / 6.0;
+  lin_radius_ = third > 0.0 ? std::cbrt(kLinearTolerance / third) : 0.0;
+  // Structure of arrays, padded with zero terms (skipped by no point: z_skip = +inf).
+  for (auto* v : {&k_, &kx_, &op_, &om_, &omega_, &phase_}) v->assign(np_, 0.0);
+  z_skip_.assign(np_, std::numeric_limits<double>::infinity());
+  k_upto_.assign(np_, 0.0);
+  kx_upto_.assign(np_, 0.0);
+  for (int q = 0; q < 6; ++q) {
+    cx_[q].assign(np_, 0.0);
+    cz_[q].assign(np_, 0.0);
+  }
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const Comp& c = comps[i];
+    k_[i] = c.k;
+    kx_[i] = c.kx;
+    op_[i] = c.op;
+    om_[i] = c.om;
+    omega_[i] = c.omega;
+    phase_[i] = c.phase;
+    z_skip_[i] = c.z_skip;
+    kx_max_ = std::max(kx_max_, std::abs(c.kx));
+    k_max_ = std::max(k_max_, c.k);
+    kx_upto_[i] = kx_max_;
+    k_upto_[i] = k_max_;
+    const double ax = c.A * c.aw * c.cd, az = c.A * c.aw;
+    const double pw[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};  // powers of kx, k
+    for (int q = 0; q < 6; ++q) {
+      const double f_q = std::pow(c.kx, pw[q][0]) * std::pow(c.k, pw[q][1]);
+      cx_[q][i] = ax * f_q;
+      cz_[q][i] = az * f_q;
+    }
+  }
+  for (std::size_t i = nc_; i < np_; ++i) {  // the padding's prefixes: those of all components
+    kx_upto_[i] = kx_max_;
+    k_upto_[i] = k_max_;
+  }
+  exact_.assign(points, Exact{});
+  cos_a_.assign(np_, 1.0);
+  sin_a_.assign(np_, 0.0);
+  x_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
+  z_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
+  valid_.assign(points, 0);
+  moves_.assign(points, 0);
+  for (auto* v : {&cos_b_, &sin_b_, &ep_, &em_}) v->assign(points * np_, 0.0);
+}
+
+void WaveVelocityCache::setTime(double t) {
+  if (empty() || (have_time_ && t == t_)) return;
+  t_ = t;
+  have_time_ = true;
+  ramp_ = field_->rampFactor(t);
+  for (std::size_t i = 0; i < nc_; ++i) {
+    const double a = phase_[i] - omega_[i] * t;
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_sincos(a, &sin_a_[i], &cos_a_[i]);  // one call for both (glibc: the same values)
+#else
+    cos_a_[i] = std::cos(a);
+    sin_a_[i] = std::sin(a);
+#endif
+  }
+}
+
+void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, double& vz) {
+  vx = vz = 0.0;
+  if (empty()) return;
+  const WaveField& f = *field_;
+  const double zc = std::min(0.0, std::max(-f.depth_, z));
+  if (zc < f.z_all_negligible_) return;
+  Exact& ex = exact_[p];
+  const bool inside = z < 0.0 && z > -f.depth_;  // not clamped: the expansion holds
+  if (inside && ex.valid && ex.t == t_) {
+    const double dx = x - ex.x, dz = z - ex.z;
+    if (dx * dx + dz * dz <= lin_radius_ * lin_radius_) {  // linearRadius: second-order Taylor
+      auto taylor = [dx, dz](const double* v) {
+        return v[0] + v[1] * dx + v[2] * dz + 0.5 * v[3] * dx * dx + v[4] * dx * dz + 0.5 * v[5] * dz * dz;
+      };
+      vx = taylor(ex.vx);
+      vz = taylor(ex.vz);
+      return;
+    }
+  }
+  const std::size_t off = p * np_;
+  double* cb = cos_b_.data() + off;
+  double* sb = sin_b_.data() + off;
+  double* ep = ep_.data() + off;
+  double* em = em_.data() + off;
+  // The reference: moved to the point by every exact evaluation (componentSums), computed
+  // afresh when the point jumped beyond the Taylor series' reach (also when it is NaN) and
+  // every kResync moves, so that the rounding of the carried values does not build up.
+  constexpr int kResync = 512;  // rounding of 512 moves: ~1e-13 relative at worst (test_wave_velocity_cache)
+  double dx = x - x_ref_[p], dz = zc - z_ref_[p];
+  if (!(std::abs(dx) * kx_max_ <= kTaylorRadius && std::abs(dz) * k_max_ <= kTaylorRadius) || moves_[p] >= kResync) {
+    x_ref_[p] = x;
+    z_ref_[p] = zc;
+    dx = dz = 0.0;
+    valid_[p] = 0;
+    moves_[p] = 0;
+  }
+  // The components this elevation sees (a prefix: sorted by z_skip), whole lanes of them (the
+  // extra ones, below their skip depth, add less than 1e-12 m/s each).
+  const std::size_t seen =
+      static_cast<std::size_t>(std::upper_bound(z_skip_.begin(), z_skip_.begin() + static_cast<std::ptrdiff_t>(nc_), zc) -
+                               z_skip_.begin());
+  const std::size_t n = (seen + kLanes - 1) / kLanes * kLanes;
+  // Components [valid, n) have no reference values yet (or stale ones): compute them there.
+  for (std::size_t i = valid_[p]; i < n; ++i) {
+    cb[i] = std::cos(kx_[i] * x_ref_[p]);
+    sb[i] = std::sin(kx_[i] * x_ref_[p]);
+    ep[i] = std::exp(k_[i] * (z_ref_[p] + op_[i]));
+    em[i] = std::exp(-k_[i] * (z_ref_[p] + om_[i]));
+  }
+  valid_[p] = std::max(valid_[p], n);
+  SumInputs in{k_.data(), kx_.data(), cos_a_.data(), sin_a_.data(), cb, sb, ep, em, {}, {}};
+  for (int q = 0; q < 6; ++q) {
+    in.cx[q] = cx_[q].data();
+    in.cz[q] = cz_[q].data();
+  }
+  double sums[12];
+  // The shorter series where the largest argument among the components summed allows it
+  // (a deep point sees long waves only, and moves little in a step).
+  if (n == 0 || std::max(std::abs(dx) * kx_upto_[n - 1], std::abs(dz) * k_upto_[n - 1]) <= kShortTaylorRadius)
+    componentSums<7>(in, n, dx, dz, sums);
+  else
+    componentSums<11>(in, n, dx, dz, sums);
+  if (dx != 0.0 || dz != 0.0) {  // [0, n) now refer to (x, zc); the others are stale
+    x_ref_[p] = x;
+    z_ref_[p] = zc;
+    valid_[p] = n;
+    ++moves_[p];
+  }
+  vx = sums[0] * ramp_;
+  vz = sums[6] * ramp_;
+  ex.valid = inside;
+  if (!inside) return;
+  ex.t = t_;
+  ex.x = x;
+  ex.z = z;
+  for (int q = 0; q < 6; ++q) {
+    ex.vx[q] = sums[q] * ramp_;
+    ex.vz[q] = sums[6 + q] * ramp_;
+  }
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics

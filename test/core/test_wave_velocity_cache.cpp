@@ -1,0 +1,188 @@
+// WaveVelocityCache: the dynamic solver's wave velocity at the nodes against the direct sum of
+// WaveField::velocity (carried references, both Taylor series, the second-order expansion).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "mooring_dynamics/core/waves.hpp"
+
+using namespace mooring_dynamics::core;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kG = 9.81;
+
+WaveSpec regular(double height, double period) {
+  WaveSpec s;
+  s.type = WaveSpec::Type::Regular;
+  s.height = height;
+  s.period = period;
+  return s;
+}
+
+}  // namespace
+
+// The per-point cache of the dynamic solver against WaveField::velocity: a random sea in deep
+// water (1860 m, every component in the exponential branch), one in 60 m (hyperbolic branch),
+// with a ramp, at points that creep (Taylor carry) and jump (refresh) between evaluations,
+// above and below the surface, over many times. Same sums up to rounding.
+TEST(Waves, VelocityCacheMatchesDirectEvaluation) {
+  constexpr double kRelTol = 1e-12;   // of the largest velocity: reordered rounding only
+  for (double depth : {1860.0, 60.0}) {
+    WaveSpec spec;
+    spec.type = WaveSpec::Type::PiersonMoskowitz;
+    spec.hs = 9.8;
+    spec.tp = 16.0;
+    spec.direction = 0.3;
+    spec.ramp = 20.0;
+    const WaveField field(spec, depth, 9.81);
+    constexpr std::size_t kPoints = 4;
+    WaveVelocityCache cache(&field, kPoints);
+    ASSERT_FALSE(cache.empty());
+    const double x0[kPoints] = {0.0, 150.0, -40.0, 900.0};
+    const double z0[kPoints] = {-1.0, -15.0, 0.5, -0.5 * depth};
+    int compared = 0;
+    for (int step = 0; step < 60; ++step) {
+      const double t = 0.37 * step;
+      cache.setTime(t);
+      for (std::size_t p = 0; p < kPoints; ++p) {
+        // Creep by a few mm per evaluation, jump by metres every 10th step.
+        const double x = x0[p] + 0.003 * step + (step % 10 == 9 ? 7.0 : 0.0);
+        const double z = z0[p] + 0.2 * std::sin(0.1 * step);
+        double vx, vz, ex, ey, ez;
+        cache.velocity(p, x, z, vx, vz);
+        field.velocity(x, 0.0, z, t, ex, ey, ez);
+        const double scale = std::max({1e-3, std::abs(ex), std::abs(ez)});
+        EXPECT_NEAR(vx, ex, kRelTol * scale) << "depth " << depth << " point " << p << " t " << t;
+        EXPECT_NEAR(vz, ez, kRelTol * scale) << "depth " << depth << " point " << p << " t " << t;
+        ++compared;
+      }
+    }
+    EXPECT_EQ(compared, 240);
+  }
+  WaveVelocityCache none(nullptr, 3);
+  EXPECT_TRUE(none.empty());
+}
+
+// Within linearRadius of a point's last exact evaluation at the same time the cache returns the
+// first-order expansion, whose error is bounded by WaveVelocityCache::kLinearTolerance; beyond
+// it, or at another time, the exact sum. Both depth branches, points below, at and above the
+// surface, displacements in all directions.
+TEST(Waves, VelocityCacheLinearizesWithinItsRadius) {
+  constexpr double kRoundTol = 1e-12;  // of the largest velocity: reordered rounding only
+  for (double depth : {1860.0, 60.0}) {
+    WaveSpec spec;
+    spec.type = WaveSpec::Type::PiersonMoskowitz;
+    spec.hs = 9.8;
+    spec.tp = 16.0;
+    spec.components = 400;
+    spec.direction = 0.3;
+    const WaveField field(spec, depth, 9.81);
+    const double z0s[] = {-0.3, -12.0, -150.0, 0.0};
+    WaveVelocityCache cache(&field, 4);
+    const double r = cache.linearRadius();
+    // The radius is what makes the linearization pay: a Newton iteration moves a node by less.
+    EXPECT_GT(r, 1e-4) << "depth " << depth;
+    EXPECT_LT(r, 1.0) << "depth " << depth;
+    int linear = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+      const double t = 3.1 + 0.5 * trial;
+      cache.setTime(t);
+      for (std::size_t p = 0; p < 4; ++p) {
+        const double x0 = 20.0 * p + 0.7 * trial, z0 = z0s[p];
+        double vx, vz, ex, ey, ez;
+        cache.velocity(p, x0, z0, vx, vz);  // exact: first evaluation at this time
+        field.velocity(x0, 0.0, z0, t, ex, ey, ez);
+        const double scale = std::max({1e-3, std::abs(ex), std::abs(ez)});
+        EXPECT_NEAR(vx, ex, kRoundTol * scale);
+        EXPECT_NEAR(vz, ez, kRoundTol * scale);
+        // A displacement of 0.9 r in direction theta: linearized, within the bound.
+        const double th = 0.37 * trial + 1.3 * p, d = 0.9 * r;
+        const double x1 = x0 + d * std::cos(th), z1 = z0 + d * std::sin(th);
+        cache.velocity(p, x1, z1, vx, vz);
+        field.velocity(x1, 0.0, z1, t, ex, ey, ez);
+        EXPECT_NEAR(vx, ex, WaveVelocityCache::kLinearTolerance + kRoundTol * scale) << "depth " << depth << " p " << p;
+        EXPECT_NEAR(vz, ez, WaveVelocityCache::kLinearTolerance + kRoundTol * scale) << "depth " << depth << " p " << p;
+        if (std::abs(vx - ex) > kRoundTol * scale || std::abs(vz - ez) > kRoundTol * scale) ++linear;
+        // Beyond the radius (from the last exact point x0, z0): exact again.
+        const double x2 = x0 + 3.0 * r * std::cos(th), z2 = z0 + 3.0 * r * std::sin(th);
+        cache.velocity(p, x2, z2, vx, vz);
+        field.velocity(x2, 0.0, z2, t, ex, ey, ez);
+        EXPECT_NEAR(vx, ex, kRoundTol * scale);
+        EXPECT_NEAR(vz, ez, kRoundTol * scale);
+      }
+    }
+    // The expansion was used (it differs from the exact sum by more than rounding somewhere).
+    EXPECT_GT(linear, 0) << "depth " << depth;
+    std::printf("depth %.0f m: linear radius %.3g m\n", depth, r);
+  }
+}
+
+// A node that creeps for thousands of evaluations (its reference carried by the Taylor factors
+// each time, computed afresh only every few hundred moves) keeps the direct sum's value: the
+// rounding of the carried values does not build up.
+TEST(Waves, VelocityCacheCarriedReferenceDoesNotDrift) {
+  // Relative to the larger of the velocity and 0.1 m/s (a tenth of the sea's velocities at that
+  // depth): reordered rounding only. A drift would grow with the moves; 32 and 512 moves between
+  // fresh references give the same largest difference.
+  constexpr double kRelTol = 1e-12;
+  constexpr double kFloor = 0.1;  // [m/s]
+  WaveSpec spec;
+  spec.type = WaveSpec::Type::PiersonMoskowitz;
+  spec.hs = 9.8;
+  spec.tp = 16.0;
+  spec.components = 400;
+  const WaveField field(spec, 1860.0, 9.81);
+  WaveVelocityCache cache(&field, 1);
+  double worst = 0.0;
+  for (int step = 0; step < 3000; ++step) {
+    const double t = 0.1 * step;
+    cache.setTime(t);
+    // A node heaving 3 m and surging 1 m with the sea, 10 m down.
+    const double x = 5.0 + std::sin(0.35 * t), z = -10.0 + 3.0 * std::sin(0.39 * t);
+    double vx, vz, ex, ey, ez;
+    cache.velocity(0, x, z, vx, vz);
+    field.velocity(x, 0.0, z, t, ex, ey, ez);
+    const double scale = std::max({kFloor, std::abs(ex), std::abs(ez)});
+    worst = std::max({worst, std::abs(vx - ex) / scale, std::abs(vz - ez) / scale});
+  }
+  EXPECT_LT(worst, kRelTol);
+  std::printf("largest relative difference over 3000 carried evaluations: %.2e\n", worst);
+}
+
+// The carried reference's two Taylor series (to u^7 below kShortTaylorRadius, to u^11 up to
+// kTaylorRadius) on a single regular component, where k is known and nothing else rounds: moves
+// whose largest argument k |dx| or k |dz| sits just below and just above each radius, from a
+// reference carried along (each evaluation at a new time, so none is an expansion). The short
+// series used at 0.2 would be off by 0.2^8 / 8! = 6e-11, a series to u^3 at 0.02 by
+// 0.02^4 / 4! = 7e-9: far above the tolerance.
+TEST(Waves, VelocityCacheTaylorSeriesAtTheirRadii) {
+  constexpr double kRelTol = 1e-14;  // of a omega: one component's rounding only
+  const double depth = 1000.0, T = 5.0;
+  const WaveField field(regular(2.0, T), depth, kG);
+  const double k = field.components()[0].k, aw = 1.0 * 2.0 * kPi / T;
+  const double r7 = WaveVelocityCache::kShortTaylorRadius, r11 = WaveVelocityCache::kTaylorRadius;
+  const double args[] = {0.99 * r7, 1.01 * r7, 0.5 * r11, 0.99 * r11};
+  WaveVelocityCache cache(&field, 1);
+  double t = 0.0, x = 3.0, z = -2.0;
+  int evaluations = 0;
+  for (double u : args) {
+    for (int axis = 0; axis < 2; ++axis) {
+      for (double sign : {1.0, -1.0}) {
+        (axis == 0 ? x : z) += sign * u / k;
+        t += 0.77;
+        cache.setTime(t);
+        double vx, vz, ex, ey, ez;
+        cache.velocity(0, x, z, vx, vz);
+        field.velocity(x, 0.0, z, t, ex, ey, ez);
+        EXPECT_NEAR(vx, ex, kRelTol * aw) << "argument " << u << " axis " << axis;
+        EXPECT_NEAR(vz, ez, kRelTol * aw) << "argument " << u << " axis " << axis;
+        ++evaluations;
+      }
+    }
+  }
+  EXPECT_EQ(evaluations, 16);
+}
