@@ -93,7 +93,6 @@ struct DynamicSolver2D::Impl {
     for (int j = 0; j < nodes(); ++j) out[static_cast<std::size_t>(j)] = waterAt(j, y[N * j + X], y[N * j + Z]);
   }
 
-  /// Spatial rows of every interval at state y (double).
   /// Spatial rows of every interval at the accepted state y (double), and cos, sin of every
   /// node's inclination there (the next step's previous level).
   void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out, std::vector<double>& c,
