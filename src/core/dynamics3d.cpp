@@ -42,6 +42,7 @@ struct DynamicSolver3D::Impl {
   Problem problem;
   Mesh mesh;
   WaveField waves;
+  mutable WaveVelocityCache wave_cache;  ///< wave kinematics at the nodes (WaveVelocityCache)
   CurrentProfile current;  ///< problem.environment.current, components precomputed
   GeneralizedAlpha ga;
   DynamicOptions opt;
@@ -65,14 +66,15 @@ struct DynamicSolver3D::Impl {
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 
-  Water waterAt(double x, double y, double z, double time) const {
+  /// Water at node j, at (x, y, z) and the time last given to wave_cache.setTime.
+  Water waterAt(int j, double x, double y, double z) const {
     Water w;
     current.at(z, w.w[0], w.w[1]);
     current.gradientAt(z, w.dw_dz[0], w.dw_dz[1]);
     w.z = z;
-    if (!waves.empty() && z <= 0.0) {
+    if (!wave_cache.empty() && z <= 0.0) {
       double vx, vy, vz;
-      waves.velocity(x, y, z, time, vx, vy, vz);
+      wave_cache.velocity3(static_cast<std::size_t>(j), x, y, z, vx, vy, vz);  // WaveField::velocity
       w.w[0] += vx;
       w.w[1] += vy;
       w.w[2] += vz;
@@ -82,8 +84,9 @@ struct DynamicSolver3D::Impl {
 
   void waterField(const Eigen::VectorXd& y, double time, std::vector<Water>& out) const {
     out.resize(static_cast<std::size_t>(nodes()));
+    wave_cache.setTime(time);
     for (int j = 0; j < nodes(); ++j)
-      out[static_cast<std::size_t>(j)] = waterAt(y[N * j + X], y[N * j + eq3d::Y], y[N * j + Z], time);
+      out[static_cast<std::size_t>(j)] = waterAt(j, y[N * j + X], y[N * j + eq3d::Y], y[N * j + Z]);
   }
 
   /// Rows 0-5 of the spatial part of every interval at state y (double): the rows that eq. 30
@@ -402,6 +405,7 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   }
   if (problem.environment.waves.type != WaveSpec::Type::None)
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size(), true);
   im.current = CurrentProfile(problem.environment.current);
 
   const NodeState& topNode = im.statics.nodes.back();

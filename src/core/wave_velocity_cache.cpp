@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "mooring_dynamics/core/waves.hpp"
@@ -124,10 +125,21 @@ MD_WAVE_SIMD_CLONES void componentSums(const SumInputs& in, std::size_t n, doubl
 
 }  // namespace
 
-WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points) : field_(field) {
+WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points, bool horizontal_plane)
+    : field_(field), plane_(horizontal_plane) {
   if (empty()) return;
   const WaveField& f = *field_;
   nc_ = f.components_.size();
+  if (plane_) {
+    // Points in the horizontal plane: the phases depend on x and y through the distance along
+    // the one direction of travel, xi = x cos(theta) + y sin(theta) (the tables below in xi).
+    direction_ = f.components_.front().direction;
+    for (const WaveComponent& c : f.components_)
+      if (c.direction != direction_)
+        throw std::invalid_argument("WaveVelocityCache: points off the x-z plane need one direction of travel");
+    cos_dir_ = std::cos(direction_);
+    sin_dir_ = std::sin(direction_);
+  }
   np_ = (nc_ + kLanes - 1) / kLanes * kLanes;
   const double h = f.depth_;
   // One component's constants before sorting: the depth factors as A (E+ +- E-) with
@@ -142,11 +154,13 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points)
     const WaveField::Kinematics& q = f.kin_[i];
     Comp m{};
     m.k = c.k;
-    m.kx = c.k * q.cd;
+    // Along x (the x-z plane: the velocity's x component) or along the direction of travel (the
+    // horizontal velocity, split into x and y by velocity3).
+    m.kx = plane_ ? c.k : c.k * q.cd;
     m.omega = c.omega;
     m.phase = c.phase;
     m.aw = q.aw;
-    m.cd = q.cd;
+    m.cd = plane_ ? 1.0 : q.cd;
     if (q.deep) {
       m.A = 1.0 / q.den;
       m.op = 0.0;
@@ -311,6 +325,14 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
     ex.vx[q] = sums[q] * ramp_;
     ex.vz[q] = sums[6 + q] * ramp_;
   }
+}
+
+void WaveVelocityCache::velocity3(std::size_t p, double x, double y, double z, double& vx, double& vy, double& vz) {
+  if (!plane_ && !empty()) throw std::logic_error("WaveVelocityCache::velocity3 needs a cache built for the horizontal plane");
+  double vh;
+  velocity(p, x * cos_dir_ + y * sin_dir_, z, vh, vz);  // at xi along the direction of travel
+  vx = vh * cos_dir_;
+  vy = vh * sin_dir_;
 }
 
 }  // namespace core

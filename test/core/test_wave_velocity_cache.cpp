@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "mooring_dynamics/core/waves.hpp"
 
@@ -185,4 +186,48 @@ TEST(Waves, VelocityCacheTaylorSeriesAtTheirRadii) {
     }
   }
   EXPECT_EQ(evaluations, 16);
+}
+
+// A cache for points anywhere in the horizontal plane (the 3-D solver's) against
+// WaveField::velocity(x, y, z, t): seas travelling toward 17 and 115 degrees, in deep water and in
+// 60 m, at points that creep and jump in x, y and z, above and below the surface. Same sums up to
+// rounding. A cache for the x-z plane refuses points off it.
+TEST(Waves, VelocityCacheInTheHorizontalPlaneMatchesDirectEvaluation) {
+  constexpr double kRelTol = 1e-12;  // of the largest velocity: reordered rounding only
+  int compared = 0;
+  for (double direction : {0.3, 2.0})
+    for (double depth : {1860.0, 60.0}) {
+      WaveSpec spec;
+      spec.type = WaveSpec::Type::PiersonMoskowitz;
+      spec.hs = 9.8;
+      spec.tp = 16.0;
+      spec.direction = direction;
+      spec.ramp = 20.0;
+      const WaveField field(spec, depth, 9.81);
+      constexpr std::size_t kPoints = 3;
+      WaveVelocityCache cache(&field, kPoints, true);
+      const double x0[kPoints] = {0.0, 150.0, -40.0}, y0[kPoints] = {0.0, -70.0, 25.0};
+      const double z0[kPoints] = {-1.0, -15.0, 0.5};
+      for (int step = 0; step < 40; ++step) {
+        const double t = 0.41 * step;
+        cache.setTime(t);
+        for (std::size_t p = 0; p < kPoints; ++p) {
+          const double jump = step % 10 == 9 ? 6.0 : 0.0;
+          const double x = x0[p] + 0.004 * step + jump, y = y0[p] - 0.003 * step + jump;
+          const double z = z0[p] + 0.2 * std::sin(0.1 * step);
+          double vx, vy, vz, ex, ey, ez;
+          cache.velocity3(p, x, y, z, vx, vy, vz);
+          field.velocity(x, y, z, t, ex, ey, ez);
+          const double scale = std::max({1e-3, std::abs(ex), std::abs(ey), std::abs(ez)});
+          EXPECT_NEAR(vx, ex, kRelTol * scale) << "direction " << direction << " depth " << depth << " t " << t;
+          EXPECT_NEAR(vy, ey, kRelTol * scale) << "direction " << direction << " depth " << depth << " t " << t;
+          EXPECT_NEAR(vz, ez, kRelTol * scale) << "direction " << direction << " depth " << depth << " t " << t;
+          ++compared;
+        }
+      }
+      WaveVelocityCache xz(&field, 1);
+      double vx, vy, vz;
+      EXPECT_THROW(xz.velocity3(0, 1.0, 2.0, -3.0, vx, vy, vz), std::logic_error);
+    }
+  EXPECT_EQ(compared, 480);
 }

@@ -97,13 +97,21 @@ class WaveField {
 class WaveVelocityCache {
  public:
   WaveVelocityCache() = default;
-  /// For `points` points of `field` (which must outlive the cache).
-  WaveVelocityCache(const WaveField* field, std::size_t points);
+  /// For `points` points of `field` (which must outlive the cache): in the x-z plane (y = 0,
+  /// velocity()), or with `horizontal_plane` anywhere (velocity3(); every component must then
+  /// travel in the same direction, as those of WaveSpec do; std::invalid_argument otherwise).
+  WaveVelocityCache(const WaveField* field, std::size_t points, bool horizontal_plane = false);
   bool empty() const { return field_ == nullptr || field_->empty(); }
   /// Time of the following evaluations [s].
   void setTime(double t);
-  /// (vx, vz) at point i at (x, 0, z) and the time of setTime [m/s].
+  /// (vx, vz) at point i at (x, 0, z) and the time of setTime [m/s]. (With horizontal_plane, x
+  /// is the distance along the direction of travel and vx the horizontal velocity along it.)
   void velocity(std::size_t i, double x, double z, double& vx, double& vz);
+  /// (vx, vy, vz) at point i at (x, y, z) and the time of setTime [m/s]: WaveField::velocity up
+  /// to rounding, for a cache built with horizontal_plane (std::logic_error otherwise). The
+  /// phases depend on x, y through xi = x cos(theta) + y sin(theta) only, so this is velocity()
+  /// at xi with the horizontal velocity split along theta.
+  void velocity3(std::size_t i, double x, double y, double z, double& vx, double& vy, double& vz);
 
   /// Largest phase difference or exponent carried by the Taylor series [rad]: the terms left
   /// out (beyond u^11) are below 0.2^12 / 12! ~ 9e-18.
@@ -125,6 +133,8 @@ class WaveVelocityCache {
 
  private:
   const WaveField* field_ = nullptr;
+  bool plane_ = false;                  ///< points anywhere: tables along the direction of travel
+  double direction_ = 0.0, cos_dir_ = 1.0, sin_dir_ = 0.0;  ///< that direction theta [rad]
   std::size_t nc_ = 0;                  ///< components
   std::size_t np_ = 0;                  ///< components padded to a multiple of 8 (zero terms)
   double t_ = 0.0;
