@@ -1,9 +1,9 @@
-// The hand-coded rows and Jacobian of a dynamic half-grid interval (dynamic_interval.hpp)
-// against the AutoDiff templates of equations2d_dynamic.hpp they replace, assembled as the step
-// residual (eq. 30 with the mass matrix averaged by alpha_k, eq. 31): in and out of seabed
-// contact (the smoothed onset and beyond it, with the dashpot, on a sloping bottom), with a
-// depth-dependent current and waves, for a linear and a tabulated tension law. The finite
-// difference check of the assembled step Jacobian is in test_dynamics2d.
+// The hand-coded rows and Jacobian of a dynamic half-grid interval (dynamic_interval.hpp), and
+// its spatial rows alone, against the AutoDiff templates of equations2d_dynamic.hpp they replace,
+// assembled as the step residual (eq. 30 with the mass matrix averaged by alpha_k, eq. 31): in
+// and out of seabed contact (the smoothed onset and beyond it, with the dashpot, on a sloping
+// bottom), with a depth-dependent current and waves, for a linear and a tabulated tension law.
+// The finite difference check of the assembled step Jacobian is in test_dynamics2d.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -134,6 +134,15 @@ TEST(DynamicInterval, RowsAndJacobianMatchAutoDiff) {
         double R2[N];
         intervalStepRows(env, m, h, na, nb, pa, pb, Ydw, Ydw + N, StepWeights{ak, wr}, S, R2, nullptr);
         for (int q = 0; q < N; ++q) EXPECT_EQ(R2[q], R[q]);
+        // The accepted state's spatial rows (intervalSpatialRows from nodeLoadValue) against the
+        // template's.
+        double sp_ref[N], sp[N], f1a, f2a, f1b, f2b;
+        intervalSpatial(env, m, h, Y, Y + N, w[0], w[1], sp_ref);
+        nodeLoadValue(env, m, na, f1a, f2a);
+        nodeLoadValue(env, m, nb, f1b, f2b);
+        intervalSpatialRows(m, h, na, nb, f1a, f2a, f1b, f2b, sp);
+        for (int q = 0; q < N; ++q)
+          EXPECT_NEAR(sp[q], sp_ref[q], kValueRelTol * std::max(1.0, std::abs(sp_ref[q]))) << "spatial row " << q;
         ++checked;
       }
   EXPECT_EQ(checked, 30);
@@ -160,40 +169,3 @@ TEST(DynamicInterval, ContactTermsAreExercised) {
   EXPECT_GT(std::abs(J[0][U] - Jfree[0][U]), kContactEntry);
 }
 
-// The spatial rows of the accepted state (intervalSpatialRows from nodeLoadValue) against the
-// AutoDiff template intervalSpatial in double, free, in the contact onset and beyond it.
-TEST(DynamicInterval, SpatialRowsMatchTemplate) {
-  const Environment env = environment();
-  const double h = 0.5;
-  const double delta = eq2d::contactOnset(env, chain(false));
-  const double offsets[][2] = {{0.3, 0.8}, {-0.4 * delta, -3.0 * delta}, {-5.0 * delta, -2.0 * delta}};
-  std::mt19937 rng(9);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  int checked = 0;
-  for (bool table : {false, true})
-    for (const auto& off : offsets)
-      for (int trial = 0; trial < 5; ++trial) {
-        const Material m = chain(table);
-        double Y[2 * N];
-        randomState(rng, env, off[0], off[1], Y);
-        Water w[2];
-        for (int j = 0; j < 2; ++j) {
-          w[j].wx = 0.5 + 0.3 * u(rng);
-          w[j].wz = 0.2 * u(rng);
-          w[j].z = Y[N * j + Z] + 0.01 * u(rng);
-          w[j].dwx_dz = 0.01 * u(rng);
-        }
-        double ref[N], sp[N], f1a, f2a, f1b, f2b;
-        intervalSpatial(env, m, h, Y, Y + N, w[0], w[1], ref);
-        const NodeView na{Y, std::cos(Y[PHI]), std::sin(Y[PHI]), &w[0]};
-        const NodeView nb{Y + N, std::cos(Y[N + PHI]), std::sin(Y[N + PHI]), &w[1]};
-        nodeLoadValue(env, m, na, f1a, f2a);
-        nodeLoadValue(env, m, nb, f1b, f2b);
-        intervalSpatialRows(m, h, na, nb, f1a, f2a, f1b, f2b, sp);
-        for (int q = 0; q < N; ++q)
-          EXPECT_NEAR(sp[q], ref[q], kValueRelTol * std::max(1.0, std::abs(ref[q])))
-              << "row " << q << " table " << table << " offsets " << off[0] << ", " << off[1];
-        ++checked;
-      }
-  EXPECT_EQ(checked, 30);
-}
