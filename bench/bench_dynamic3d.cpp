@@ -134,9 +134,37 @@ void BM_TowedArrayCase1RealTimeFactor(benchmark::State& state) {
   state.counters["jacobians"] = static_cast<double>(jacobians) / static_cast<double>(iterations);
 }
 
+/// The deepwater S-tether (config/s_tether.yaml: 274 nodes, Pierson-Moskowitz sea of 400
+/// components, base step 0.5 s) in the 3-D model, first 100 s: the cost of 3-D wave kinematics
+/// (WaveVelocityCache in the horizontal plane) beside the 2-D run of bench_dynamic.
+void BM_STether3DWavesRealTimeFactor(benchmark::State& state) {
+  md::Problem problem;
+  if (!mooring_dynamics::bench::loadShippedConfig(state, "s_tether.yaml", problem)) return;
+  problem.formulation = md::Formulation::ThreeD;
+  constexpr double kDuration = 100.0;  // [s] of the 600 s storm
+  problem.dynamics.duration = kDuration;
+  double wall = 0.0;
+  long iterations = 0, newton = 0;
+  for (auto _ : state) {
+    const md::DynamicSeries r = md::runDynamic3D(problem);
+    if (!r.completed) {
+      state.SkipWithError(("run failed: " + r.message).c_str());
+      return;
+    }
+    state.SetIterationTime(r.wall_seconds);
+    wall += r.wall_seconds;
+    newton += r.newton_iterations;
+    ++iterations;
+  }
+  if (iterations == 0) return;
+  state.counters["real_time_factor"] = kDuration * static_cast<double>(iterations) / wall;
+  state.counters["newton_iters"] = static_cast<double>(newton) / static_cast<double>(iterations);
+}
+
 BENCHMARK(BM_Dynamic3DStepCost)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(800)->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_ChainMooring3DRealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_TowedArrayCase1RealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_STether3DWavesRealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
 
 BENCHMARK_MAIN();
