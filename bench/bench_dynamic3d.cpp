@@ -12,7 +12,11 @@
 // BM_TowedArrayCase1RealTimeFactor: the paper's A.1 Case 1 (config/towed_array.yaml), 940 s.
 //
 // BM_ChainMooring3DRealTimeFactor: config/chain_mooring_3d.yaml (A.3 in a 60 deg cross current,
-// heave 2 m and sway 1 m at 8 s, dt 0.1 s), 20 s through runDynamic3D. Counter real_time_factor.
+// heave 2 m and sway 1 m at 8 s, dt 0.1 s), 20 s through runDynamic3D.
+//
+// BM_STether3DWavesRealTimeFactor: config/s_tether.yaml in the 3-D model, first 100 s.
+//
+// The whole-run benchmarks count real_time_factor, newton_iters and jacobians per run.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -86,34 +90,9 @@ void BM_Dynamic3DStepCost(benchmark::State& state) {
   state.counters["ns_per_iter_node"] = 1e9 * seconds / (static_cast<double>(newton) * nodes);
 }
 
-void BM_ChainMooring3DRealTimeFactor(benchmark::State& state) {
-  constexpr double kDuration = 20.0;  // [s] simulated
-  md::Problem problem;
-  if (!mooring_dynamics::bench::loadShippedConfig(state, "chain_mooring_3d.yaml", problem)) return;
-  problem.dynamics.duration = kDuration;
-  double wall = 0.0;
-  long iterations = 0;
-  for (auto _ : state) {
-    const md::DynamicSeries r = md::runDynamic3D(problem);
-    if (!r.completed) {
-      state.SkipWithError(("run failed: " + r.message).c_str());
-      return;
-    }
-    state.SetIterationTime(r.wall_seconds);
-    wall += r.wall_seconds;
-    ++iterations;
-  }
-  if (iterations > 0) state.counters["real_time_factor"] = kDuration * static_cast<double>(iterations) / wall;
-}
-
-}  // namespace
-
-/// The paper's towed array, Case 1 (config/towed_array.yaml: 1031 nodes, 940 s at a 1 s base step,
-/// modified Newton as shipped) through runDynamic3D, as `cable_sim dynamic`. The target:
-/// under 3.5 s (the paper's program: about 35 s).
-void BM_TowedArrayCase1RealTimeFactor(benchmark::State& state) {
-  md::Problem problem;
-  if (!mooring_dynamics::bench::loadShippedConfig(state, "towed_array.yaml", problem)) return;
+/// Times whole runs of `problem` through runDynamic3D, as `cable_sim dynamic` does: counters
+/// real_time_factor (simulated / wall time), newton_iters and jacobians per run.
+void timeWholeRuns(benchmark::State& state, const md::Problem& problem) {
   double wall = 0.0;
   long iterations = 0, newton = 0, jacobians = 0;
   for (auto _ : state) {
@@ -134,31 +113,35 @@ void BM_TowedArrayCase1RealTimeFactor(benchmark::State& state) {
   state.counters["jacobians"] = static_cast<double>(jacobians) / static_cast<double>(iterations);
 }
 
+}  // namespace
+
+void BM_ChainMooring3DRealTimeFactor(benchmark::State& state) {
+  constexpr double kDuration = 20.0;  // [s] simulated
+  md::Problem problem;
+  if (!mooring_dynamics::bench::loadShippedConfig(state, "chain_mooring_3d.yaml", problem)) return;
+  problem.dynamics.duration = kDuration;
+  timeWholeRuns(state, problem);
+}
+
+/// The paper's towed array, Case 1 (config/towed_array.yaml: 1031 nodes, 940 s at a 1 s base step,
+/// modified Newton as shipped) through runDynamic3D, as `cable_sim dynamic`. The target:
+/// under 3.5 s (the paper's program: about 35 s).
+void BM_TowedArrayCase1RealTimeFactor(benchmark::State& state) {
+  md::Problem problem;
+  if (!mooring_dynamics::bench::loadShippedConfig(state, "towed_array.yaml", problem)) return;
+  timeWholeRuns(state, problem);
+}
+
 /// The deepwater S-tether (config/s_tether.yaml: 274 nodes, Pierson-Moskowitz sea of 400
 /// components, base step 0.5 s) in the 3-D model, first 100 s: the cost of 3-D wave kinematics
 /// (WaveVelocityCache in the horizontal plane) beside the 2-D run of bench_dynamic.
 void BM_STether3DWavesRealTimeFactor(benchmark::State& state) {
+  constexpr double kDuration = 100.0;  // [s] of the 600 s storm
   md::Problem problem;
   if (!mooring_dynamics::bench::loadShippedConfig(state, "s_tether.yaml", problem)) return;
   problem.formulation = md::Formulation::ThreeD;
-  constexpr double kDuration = 100.0;  // [s] of the 600 s storm
   problem.dynamics.duration = kDuration;
-  double wall = 0.0;
-  long iterations = 0, newton = 0;
-  for (auto _ : state) {
-    const md::DynamicSeries r = md::runDynamic3D(problem);
-    if (!r.completed) {
-      state.SkipWithError(("run failed: " + r.message).c_str());
-      return;
-    }
-    state.SetIterationTime(r.wall_seconds);
-    wall += r.wall_seconds;
-    newton += r.newton_iterations;
-    ++iterations;
-  }
-  if (iterations == 0) return;
-  state.counters["real_time_factor"] = kDuration * static_cast<double>(iterations) / wall;
-  state.counters["newton_iters"] = static_cast<double>(newton) / static_cast<double>(iterations);
+  timeWholeRuns(state, problem);
 }
 
 BENCHMARK(BM_Dynamic3DStepCost)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(800)->UseManualTime()

@@ -24,6 +24,18 @@ WaveSpec regular(double height, double period) {
   return s;
 }
 
+/// The A.2 storm (Pierson-Moskowitz, Hs 9.8 m, Tp 16 s, 200 components) travelling toward
+/// `direction` [rad], with a 20 s ramp.
+WaveSpec storm(double direction) {
+  WaveSpec s;
+  s.type = WaveSpec::Type::PiersonMoskowitz;
+  s.hs = 9.8;
+  s.tp = 16.0;
+  s.direction = direction;
+  s.ramp = 20.0;
+  return s;
+}
+
 }  // namespace
 
 // The per-point cache of the dynamic solver against WaveField::velocity: a random sea in deep
@@ -33,13 +45,7 @@ WaveSpec regular(double height, double period) {
 TEST(Waves, VelocityCacheMatchesDirectEvaluation) {
   constexpr double kRelTol = 1e-12;   // of the largest velocity: reordered rounding only
   for (double depth : {1860.0, 60.0}) {
-    WaveSpec spec;
-    spec.type = WaveSpec::Type::PiersonMoskowitz;
-    spec.hs = 9.8;
-    spec.tp = 16.0;
-    spec.direction = 0.3;
-    spec.ramp = 20.0;
-    const WaveField field(spec, depth, 9.81);
+    const WaveField field(storm(0.3), depth, 9.81);
     constexpr std::size_t kPoints = 4;
     WaveVelocityCache cache(&field, kPoints);
     ASSERT_FALSE(cache.empty());
@@ -197,13 +203,7 @@ TEST(Waves, VelocityCacheInTheHorizontalPlaneMatchesDirectEvaluation) {
   int compared = 0;
   for (double direction : {0.3, 2.0})
     for (double depth : {1860.0, 60.0}) {
-      WaveSpec spec;
-      spec.type = WaveSpec::Type::PiersonMoskowitz;
-      spec.hs = 9.8;
-      spec.tp = 16.0;
-      spec.direction = direction;
-      spec.ramp = 20.0;
-      const WaveField field(spec, depth, 9.81);
+      const WaveField field(storm(direction), depth, 9.81);
       constexpr std::size_t kPoints = 3;
       WaveVelocityCache cache(&field, kPoints, true);
       const double x0[kPoints] = {0.0, 150.0, -40.0}, y0[kPoints] = {0.0, -70.0, 25.0};
