@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "block_lu.hpp"
+#include "mooring_dynamics/core/fork_join.hpp"
 
 extern "C" {
 void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab,
@@ -81,9 +82,104 @@ MD_SIMD_CLONES int bandFactor(int n, double* ab, int* ipiv) {
 
 }  // namespace
 
+using block_lu::blockBackward;
 using block_lu::blockFactor;
-using block_lu::blockSolve;
+using block_lu::blockForward;
+using block_lu::BlockStorage;
 using block_lu::columnKernel;
+using block_lu::leftoverRows;
+using block_lu::Panels;
+
+namespace {
+
+/// Runs a and b, on fork when given (a on this thread), else one after the other.
+template <class A, class B>
+void both(ForkJoin* fork, A&& a, B&& b) {
+  if (fork) {
+    fork->run(a, b);
+  } else {
+    a();
+    b();
+  }
+}
+
+// The two-ended block elimination (BandedMatrix::factorize): the lower sweep is the one-ended
+// kernel on nodes 0 .. meet, whose last node's own rows are the leftover rows of the upper
+// sweep (written where interval meet's first rows were, once the upper sweep has read them);
+// the upper sweep eliminates the mirror of nodes meet .. last (block_lu::mirrorFactor) up to
+// the meeting node.
+
+template <int NB, int LEAD>
+int twistedFactor(bool columns, int nodes, int meet, const BlockStorage& lower, const BlockStorage& mirror,
+                  ForkJoin* fork) {
+  constexpr int LM = NB - LEAD, W = 2 * NB;
+  const int mirror_nodes = nodes - meet;
+  int lower_info = 0, upper_info = 0;
+  auto lowerSweep = [&] { lower_info = blockFactor<NB, LEAD>(columns, NB * (meet + 1), lower, Panels::kInner); };
+  auto upperSweep = [&] {
+    const int k = block_lu::mirrorFactor<NB, LM>(columns, nodes, meet, lower.rows, mirror);
+    if (k != 0) {  // mirror node (k - 1) / NB is node nodes - 1 - (k - 1) / NB
+      upper_info = NB * (nodes - 1 - (k - 1) / NB) + (k - 1) % NB + 1;
+      return;
+    }
+    double left[LM * NB];
+    leftoverRows<NB, LM>(columns, NB * mirror_nodes, mirror, left);
+    double* const own = lower.rows + static_cast<std::size_t>(LEAD + NB * meet) * W;
+    for (int r = 0; r < LM; ++r)
+      for (int c = 0; c < NB; ++c) own[r * W + c] = left[r * NB + c];
+  };
+  both(fork, lowerSweep, upperSweep);
+  if (lower_info != 0) return lower_info;
+  if (upper_info != 0) return upper_info;
+  return blockFactor<NB, LEAD>(columns, NB * (meet + 1), lower, Panels::kLast);
+}
+
+template <int NB, int LEAD>
+void twistedSolve(bool columns, int nodes, int meet, const BlockStorage& lower, const BlockStorage& mirror,
+                  double* b, double* mb, ForkJoin* fork) {
+  constexpr int LM = NB - LEAD;
+  const int mirror_nodes = nodes - meet;
+  double carry_lower[LEAD], carry_upper[LM];
+  auto lowerForward = [&] { blockForward<NB, LEAD>(columns, NB * (meet + 1), lower, b, Panels::kInner, carry_lower); };
+  auto upperForward = [&] {
+    for (int q = 0; q < LM; ++q) mb[q] = b[LEAD + NB * (nodes - 1) + q];
+    for (int i = 0; i + 1 < mirror_nodes; ++i)
+      for (int r = 0; r < NB; ++r) mb[LM + NB * i + r] = b[LEAD + NB * (nodes - 2 - i) + r];
+    blockForward<NB, LM>(columns, NB * mirror_nodes, mirror, mb, Panels::kInner, carry_upper);
+  };
+  both(fork, lowerForward, upperForward);
+  // The meeting node: its own rows' right-hand side from the mirror, then its x.
+  for (int q = 0; q < LM; ++q) b[LEAD + NB * meet + q] = carry_upper[q];
+  blockForward<NB, LEAD>(columns, NB * (meet + 1), lower, b, Panels::kLast, carry_lower);
+  blockBackward<NB, LEAD>(columns, meet, meet, lower, b, nullptr);
+  const double* const x_meet = b + NB * meet;
+  auto lowerBack = [&] { blockBackward<NB, LEAD>(columns, meet - 1, 0, lower, b, x_meet); };
+  auto upperBack = [&] {
+    blockBackward<NB, LM>(columns, mirror_nodes - 2, 0, mirror, mb, x_meet);
+    for (int i = 0; i + 1 < mirror_nodes; ++i)
+      for (int k = 0; k < NB; ++k) b[NB * (nodes - 1 - i) + k] = mb[NB * i + k];
+  };
+  both(fork, lowerBack, upperBack);
+}
+
+template <int NB, int LEAD>
+int factorBlocks(bool columns, int n, int meet, const BlockStorage& s, const BlockStorage& mirror, ForkJoin* fork) {
+  if (meet == 0) return blockFactor<NB, LEAD>(columns, n, s);
+  return twistedFactor<NB, LEAD>(columns, n / NB, meet, s, mirror, fork);
+}
+
+template <int NB, int LEAD>
+void solveBlocks(bool columns, int n, int meet, const BlockStorage& s, const BlockStorage& mirror, double* b,
+                 double* mb, ForkJoin* fork) {
+  if (meet == 0) {
+    blockForward<NB, LEAD>(columns, n, s, b, Panels::kAll, nullptr);
+    blockBackward<NB, LEAD>(columns, n / NB - 1, 0, s, b, nullptr);
+    return;
+  }
+  twistedSolve<NB, LEAD>(columns, n / NB, meet, s, mirror, b, mb, fork);
+}
+
+}  // namespace
 
 void BandedMatrix::setBlockStructure(int block, int lead) {
   if (block == block_ && lead == lead_) return;
@@ -112,6 +208,17 @@ void BandedMatrix::setBlockStructure(int block, int lead) {
   panels_.assign(columns_ ? nodes * W * lanes : 0, 0.0);
   inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
   perm_.assign(nodes * M, 0);
+  // The mirror of the two-ended elimination: nodes meet_ .. last, with lead block - lead.
+  meet_ = meetingNode(static_cast<int>(nodes));
+  const std::size_t mnodes = meet_ > 0 ? nodes - static_cast<std::size_t>(meet_) : 0,
+                    mlead = static_cast<std::size_t>(block - lead), mM = mlead + static_cast<std::size_t>(block),
+                    mlanes = (mM + 7) / 8 * 8;
+  mirror_rows_.assign(columns_ ? 0 : mnodes * static_cast<std::size_t>(block) * W, 0.0);
+  mirror_carried_.assign(columns_ ? 0 : mnodes * mlead * W, 0.0);
+  mirror_panels_.assign(columns_ ? mnodes * W * mlanes : 0, 0.0);
+  mirror_inv_diag_.assign(mnodes * static_cast<std::size_t>(block), 0.0);
+  mirror_perm_.assign(mnodes * mM, 0);
+  mirror_b_.assign(mnodes * static_cast<std::size_t>(block), 0.0);
 }
 
 void BandedMatrix::throwOutsidePattern(int i, int j) const {
@@ -161,15 +268,15 @@ Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
 
 int BandedMatrix::factorize() {
   int info = 0;
-  if (block_ == 8 && lead_ == 5)
-    info = blockFactor<8, 5>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(),
-                                  perm_.data());
+  const BlockStorage st{rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(), perm_.data()};
+  const BlockStorage mirror{mirror_rows_.data(), mirror_carried_.data(), mirror_panels_.data(),
+                            mirror_inv_diag_.data(), mirror_perm_.data()};
+  if (block_ == 8 && lead_ == 5)  // 2-D
+    info = factorBlocks<8, 5>(columns_, n_, meet_, st, mirror, fork_);
   else if (block_ == 16 && lead_ == 10)  // 3-D, anchored
-    info = blockFactor<16, 10>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(),
-                                  perm_.data());
-  else if (block_ == 16 && lead_ == 7)   // 3-D, free lower end
-    info = blockFactor<16, 7>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(),
-                                  perm_.data());
+    info = factorBlocks<16, 10>(columns_, n_, meet_, st, mirror, fork_);
+  else if (block_ == 16 && lead_ == 7)  // 3-D, free lower end
+    info = factorBlocks<16, 7>(columns_, n_, meet_, st, mirror, fork_);
   else if (kl_ == 12 && ku_ == 10)
     info = bandFactor<12, 10>(n_, ab_.data(), ipiv_.data());
   else if (kl_ == 8 && ku_ == 8)
@@ -187,19 +294,20 @@ int BandedMatrix::factorize() {
 void BandedMatrix::solve(Eigen::VectorXd& b) const {
   if (!factorized_) throw std::logic_error("BandedMatrix::solve before a successful factorize()");
   if (b.size() != n_) throw std::invalid_argument("BandedMatrix::solve: right-hand side of wrong size");
-  if (block_ == 8 && lead_ == 5) {
-    blockSolve<8, 5>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(), perm_.data(),
-                           b.data());
-    return;
-  }
-  if (block_ == 16 && lead_ == 10) {
-    blockSolve<16, 10>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(), perm_.data(),
-                           b.data());
-    return;
-  }
-  if (block_ == 16 && lead_ == 7) {
-    blockSolve<16, 7>(columns_, n_, rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(), perm_.data(),
-                           b.data());
+  if (block_ > 0) {
+    // (solve is const; the storage is the factor's, read only, and the mirror's scratch.)
+    const BlockStorage st{const_cast<double*>(rows_.data()), const_cast<double*>(carried_.data()),
+                          const_cast<double*>(panels_.data()), const_cast<double*>(inv_diag_.data()),
+                          const_cast<int*>(perm_.data())};
+    const BlockStorage mirror{const_cast<double*>(mirror_rows_.data()), const_cast<double*>(mirror_carried_.data()),
+                              const_cast<double*>(mirror_panels_.data()),
+                              const_cast<double*>(mirror_inv_diag_.data()), const_cast<int*>(mirror_perm_.data())};
+    if (block_ == 8 && lead_ == 5)
+      solveBlocks<8, 5>(columns_, n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
+    else if (block_ == 16 && lead_ == 10)
+      solveBlocks<16, 10>(columns_, n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
+    else
+      solveBlocks<16, 7>(columns_, n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
     return;
   }
   const int kv = kl_ + ku_;

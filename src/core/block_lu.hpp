@@ -82,6 +82,29 @@ MD_INLINE double fromBits(std::int64_t b) {
   return x;
 }
 
+/// The panels a factor call eliminates (two-ended elimination, see banded_matrix.cpp): all of
+/// them; the inner ones only (every node but the last, whose carried rows the last inner panel
+/// leaves in its storage); or, after kInner, the last one only (its own rows loaded then).
+enum class Panels { kAll, kInner, kLast };
+
+/// Where the column kernel reads a block structure's rows (2 NB values each): the LEAD lead
+/// rows, interval j's NB rows at interval0 + step j, the last node's own rows. A mirror (the
+/// two-ended elimination's upper sweep) reads the matrix's rows in reverse order of the
+/// intervals (step < 0) with each interval's two nodes swapped.
+struct RowSource {
+  const double* lead;
+  const double* interval0;
+  std::ptrdiff_t step;
+  bool swap;
+  const double* own;
+};
+/// The rows of an n-unknown block structure in their own order.
+template <int NB, int LEAD>
+RowSource rowsInOrder(int n, const double* rows) {
+  constexpr std::ptrdiff_t W = 2 * NB;
+  return RowSource{rows, rows + LEAD * W, NB * W, false, rows + static_cast<std::ptrdiff_t>(n - NB + LEAD) * W};
+}
+
 /// The portable block LU: row-major, in place (see factor below).
 namespace rowkernel {
 
@@ -277,17 +300,20 @@ MD_INLINE int eliminatePanel(Panel<NB, LEAD, ROWS>& P, double* rd, double* carry
 /// right-hand side, and inv_diag U's reciprocal diagonal. Returns 0, or the 1-based unknown of
 /// the first zero pivot.
 template <int NB, int LEAD>
-MD_SIMD_CLONES int factor(int n, double* rows, double* carried, double* inv_diag, int* perm) {
+MD_SIMD_CLONES int factor(int n, double* rows, double* carried, double* inv_diag, int* perm, Panels part) {
   constexpr int M = LEAD + NB, W = 2 * NB;
   const int nodes = n / NB;
-  for (int r = 0; r < LEAD; ++r)
-    for (int c = 0; c < W; ++c) carried[r * W + c] = c < NB ? rows[r * W + c] : 0.0;  // anchor rows: node 0
-  for (int j = 0; j + 1 < nodes; ++j) {
-    Panel<NB, LEAD, M> P{carried + static_cast<std::size_t>(LEAD * j) * W,
-                         rows + static_cast<std::size_t>(LEAD + NB * j) * W, {}};
-    if (const int k = eliminatePanel<NB, LEAD, M, W>(P, inv_diag + NB * j, P.carried + LEAD * W))
-      return NB * j + k;
-    for (int r = 0; r < M; ++r) perm[M * j + r] = P.in[r];
+  if (part != Panels::kLast) {
+    for (int r = 0; r < LEAD; ++r)
+      for (int c = 0; c < W; ++c) carried[r * W + c] = c < NB ? rows[r * W + c] : 0.0;  // anchor rows: node 0
+    for (int j = 0; j + 1 < nodes; ++j) {
+      Panel<NB, LEAD, M> P{carried + static_cast<std::size_t>(LEAD * j) * W,
+                           rows + static_cast<std::size_t>(LEAD + NB * j) * W, {}};
+      if (const int k = eliminatePanel<NB, LEAD, M, W>(P, inv_diag + NB * j, P.carried + LEAD * W))
+        return NB * j + k;
+      for (int r = 0; r < M; ++r) perm[M * j + r] = P.in[r];
+    }
+    if (part == Panels::kInner) return 0;
   }
   // The last node: the leftover rows and the node's own NB - LEAD rows, on its NB columns.
   const int j = nodes - 1;
@@ -311,19 +337,22 @@ namespace core {
 namespace block_lu {
 
 
-/// Solve with a block factor of either kernel: forward through the panels (the interchanges,
-/// the unit lower factor, the leftover rows carried on), then back substitution node by node from
-/// the top. Layout gives panel j's row at position i (entry of column c at row[c * stride]) and
-/// the slots of the right-hand side (slot s at position i: perm[i]; the interval's row q and the
-/// carried row r). The loops have fixed lengths and unroll, so the dependent chains (one multiply
-/// and one update per unknown, the carried values from node to node) run in registers.
+/// Solve with a block factor of either kernel, in two parts: forward through the panels (the
+/// interchanges, the unit lower factor, the leftover rows carried on), then back substitution
+/// node by node from the top. Layout gives panel j's row at position i (entry of column c at
+/// row[c * stride]) and the slots of the right-hand side (slot s at position i: perm[i]; the
+/// interval's row q and the carried row r). The loops have fixed lengths and unroll, so the
+/// dependent chains (one multiply and one update per unknown, the carried values from node to
+/// node) run in registers.
+///
+/// Forward: with Panels::kAll or kInner the inner panels (from the anchor rows' b[0 .. LEAD));
+/// with kInner the values carried into the last node are left in carried[0 .. LEAD); with
+/// kLast the last panel only, from carried. b[NB j ..) receives node j's forward values.
 template <int NB, int LEAD, class Layout>
-MD_INLINE void blockSolve(int n, const Layout& layout, const int* perm, const double* inv_diag, double* b) {
-  static_assert(NB % 2 == 0, "the dot products below take two columns at a time");
+MD_INLINE void blockForward(int n, const Layout& layout, const int* perm, double* b, Panels part, double* carried) {
   constexpr int M = LEAD + NB, S = Layout::stride;
   const int nodes = n / NB;
   double in[M];  // the panel's right-hand side by slot
-  for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = b[r];
   auto forward = [&](auto rowsc, int j) MD_LAMBDA_INLINE {
     constexpr int ROWS = decltype(rowsc)::value;
     const int* const pj = perm + M * j;
@@ -347,10 +376,31 @@ MD_INLINE void blockSolve(int n, const Layout& layout, const int* perm, const do
 #pragma GCC unroll 16
       for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = v[NB + r];
   };
-  for (int j = 0; j + 1 < nodes; ++j) forward(std::integral_constant<int, M>{}, j);
+  if (part != Panels::kLast) {
+    for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = b[r];
+    for (int j = 0; j + 1 < nodes; ++j) forward(std::integral_constant<int, M>{}, j);
+    if (part == Panels::kInner) {
+      for (int r = 0; r < LEAD; ++r) carried[r] = in[Layout::carriedSlot(r)];
+      return;
+    }
+  } else {
+    for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = carried[r];
+  }
   forward(std::integral_constant<int, NB>{}, nodes - 1);
+}
+
+/// Back substitution over nodes from, from - 1, .., to (after the forward part): b[NB j ..)
+/// holds node j's forward values and receives its x. x_above: x of node from + 1, or null when
+/// from is the last node.
+template <int NB, int LEAD, class Layout>
+MD_INLINE void blockBackward(int from, int to, const Layout& layout, const int* perm, const double* inv_diag,
+                             double* b, const double* x_above) {
+  static_assert(NB % 2 == 0, "the dot products below take two columns at a time");
+  constexpr int M = LEAD + NB, S = Layout::stride;
   double xn[NB] = {};  // x of the node above
-  for (int j = nodes - 1; j >= 0; --j) {
+  if (x_above)
+    for (int k = 0; k < NB; ++k) xn[k] = x_above[k];
+  for (int j = from; j >= to; --j) {
     const int* const pj = perm + M * j;
     const double* U[NB];  // U's rows
 #pragma GCC unroll 16
@@ -360,7 +410,7 @@ MD_INLINE void blockSolve(int n, const Layout& layout, const int* perm, const do
     double t[NB];
 #pragma GCC unroll 16
     for (int k = 0; k < NB; ++k) t[k] = b[NB * j + k];
-    if (j + 1 < nodes)
+    if (j < from || x_above)
 #pragma GCC unroll 16
       for (int k = 0; k < NB; ++k) {
         double s0 = 0.0, s1 = 0.0;
@@ -413,13 +463,24 @@ struct ColumnLayout {
 };
 
 template <int NB, int LEAD>
-MD_SIMD_CLONES void rowSolve(int n, const double* rows, const double* carried, const int* perm,
-                             const double* inv_diag, double* b) {
-  blockSolve<NB, LEAD>(n, RowLayout<NB, LEAD>{rows, carried}, perm, inv_diag, b);
+MD_SIMD_CLONES void rowForward(int n, const double* rows, const double* carried, const int* perm, double* b,
+                               Panels part, double* carry) {
+  blockForward<NB, LEAD>(n, RowLayout<NB, LEAD>{rows, carried}, perm, b, part, carry);
 }
 template <int NB, int LEAD>
-MD_SIMD_CLONES void columnSolve(int n, const double* panels, const int* perm, const double* inv_diag, double* b) {
-  blockSolve<NB, LEAD>(n, ColumnLayout<NB, LEAD>{panels}, perm, inv_diag, b);
+MD_SIMD_CLONES void rowBackward(int from, int to, const double* rows, const double* carried, const int* perm,
+                                const double* inv_diag, double* b, const double* x_above) {
+  blockBackward<NB, LEAD>(from, to, RowLayout<NB, LEAD>{rows, carried}, perm, inv_diag, b, x_above);
+}
+template <int NB, int LEAD>
+MD_SIMD_CLONES void columnForward(int n, const double* panels, const int* perm, double* b, Panels part,
+                                  double* carry) {
+  blockForward<NB, LEAD>(n, ColumnLayout<NB, LEAD>{panels}, perm, b, part, carry);
+}
+template <int NB, int LEAD>
+MD_SIMD_CLONES void columnBackward(int from, int to, const double* panels, const int* perm, const double* inv_diag,
+                                   double* b, const double* x_above) {
+  blockBackward<NB, LEAD>(from, to, ColumnLayout<NB, LEAD>{panels}, perm, inv_diag, b, x_above);
 }
 
 /// Whether this processor runs the AVX-512 block kernel (a test of the processor model that the
@@ -432,21 +493,83 @@ bool columnKernel() {
 #endif
 }
 
-/// The block LU with the structure's kernel (setBlockStructure chose it and sized its storage).
+/// A block-structured matrix's factor storage (setBlockStructure chose the kernel and sized it).
+struct BlockStorage {
+  double* rows;
+  double* carried;   ///< row kernel
+  double* panels;    ///< column kernel
+  double* inv_diag;
+  int* perm;
+};
+
+/// The block LU with the structure's kernel, of the panels `part` names.
 template <int NB, int LEAD>
-int blockFactor(bool columns, int n, double* rows, double* carried, double* panels, double* inv_diag, int* perm) {
+int blockFactor(bool columns, int n, const BlockStorage& s, Panels part = Panels::kAll) {
 #if MD_AVX512_KERNEL
-  if (columns) return columnkernel::factor<NB, LEAD>(n, rows, panels, inv_diag, perm);
+  if (columns) return columnkernel::factor<NB, LEAD>(n, rowsInOrder<NB, LEAD>(n, s.rows), s.panels, s.inv_diag, s.perm, part);
 #endif
   (void)columns;
-  (void)panels;
-  return rowkernel::factor<NB, LEAD>(n, rows, carried, inv_diag, perm);
+  return rowkernel::factor<NB, LEAD>(n, s.rows, s.carried, s.inv_diag, s.perm, part);
 }
 template <int NB, int LEAD>
-void blockSolve(bool columns, int n, const double* rows, const double* carried, const double* panels,
-                const double* inv_diag, const int* perm, double* b) {
-  if (columns) columnSolve<NB, LEAD>(n, panels, perm, inv_diag, b);
-  else rowSolve<NB, LEAD>(n, rows, carried, perm, inv_diag, b);
+void blockForward(bool columns, int n, const BlockStorage& s, double* b, Panels part, double* carry) {
+  if (columns) columnForward<NB, LEAD>(n, s.panels, s.perm, b, part, carry);
+  else rowForward<NB, LEAD>(n, s.rows, s.carried, s.perm, b, part, carry);
+}
+template <int NB, int LEAD>
+void blockBackward(bool columns, int from, int to, const BlockStorage& s, double* b, const double* x_above) {
+  if (columns) columnBackward<NB, LEAD>(from, to, s.panels, s.perm, s.inv_diag, b, x_above);
+  else rowBackward<NB, LEAD>(from, to, s.rows, s.carried, s.perm, s.inv_diag, b, x_above);
+}
+/// The inner panels of the mirror of nodes meet .. nodes - 1 of a block structure with lead
+/// NB - MLEAD (whose rows are `rows`): its node i is node nodes - 1 - i, its lead rows the last
+/// node's own rows, its interval i interval nodes - 2 - i with the two nodes' columns swapped;
+/// its last node, the meeting node, is left (Panels::kInner). The column kernel reads the rows
+/// where they are; the row kernel, which works in place, copies them into mirror.rows.
+template <int NB, int MLEAD>
+int mirrorFactor(bool columns, int nodes, int meet, const double* rows, const BlockStorage& mirror) {
+  constexpr int LEAD = NB - MLEAD, W = 2 * NB;
+  const int mirror_n = NB * (nodes - meet);
+  const double* const own = rows + static_cast<std::size_t>(LEAD + NB * (nodes - 1)) * W;
+  const double* const last_interval = rows + static_cast<std::size_t>(LEAD + NB * (nodes - 2)) * W;
+#if MD_AVX512_KERNEL
+  if (columns)
+    return columnkernel::factor<NB, MLEAD>(mirror_n, RowSource{own, last_interval, -NB * W, true, nullptr},
+                                           mirror.panels, mirror.inv_diag, mirror.perm, Panels::kInner);
+#endif
+  (void)columns;
+  double* const out = mirror.rows;
+  for (int q = 0; q < MLEAD; ++q)
+    for (int c = 0; c < W; ++c) out[q * W + c] = c < NB ? own[q * W + c] : 0.0;
+  for (int i = 0; i + 1 < nodes - meet; ++i) {
+    const double* const src = last_interval - static_cast<std::ptrdiff_t>(NB * W) * i;
+    double* const dst = out + static_cast<std::size_t>(MLEAD + NB * i) * W;
+    for (int r = 0; r < NB; ++r)
+      for (int c = 0; c < NB; ++c) {
+        dst[r * W + c] = src[r * W + NB + c];
+        dst[r * W + NB + c] = src[r * W + c];
+      }
+  }
+  return rowkernel::factor<NB, MLEAD>(mirror_n, mirror.rows, mirror.carried, mirror.inv_diag, mirror.perm,
+                                      Panels::kInner);
+}
+
+/// The LEAD rows the inner panels of an n-unknown factor leave for its last node, on that node's
+/// NB columns, row-major into out (in carried order: the order the forward part carries their
+/// right-hand sides in).
+template <int NB, int LEAD>
+void leftoverRows(bool columns, int n, const BlockStorage& s, double* out) {
+  const int j = n / NB - 1;
+  if (columns) {
+    constexpr int lanes = (LEAD + NB + 7) / 8 * 8;
+    const double* const P = s.panels + static_cast<std::size_t>(j) * 2 * NB * lanes;
+    for (int r = 0; r < LEAD; ++r)
+      for (int c = 0; c < NB; ++c) out[r * NB + c] = P[static_cast<std::size_t>(c) * lanes + NB + r];
+  } else {
+    const double* const C = s.carried + static_cast<std::size_t>(LEAD * j) * 2 * NB;
+    for (int r = 0; r < LEAD; ++r)
+      for (int c = 0; c < NB; ++c) out[r * NB + c] = C[r * 2 * NB + c];
+  }
 }
 
 #if !defined(__clang__) && defined(__GNUC__)

@@ -77,10 +77,11 @@ struct ColumnLU {
   }
 
   /// Interval j's NB rows into slots 0 .. NB - 1 of its panel, all W columns.
-  static MD_INLINE void loadInterval(double* panel, const double* rows, int j) {
-    const double* const src = rows + static_cast<std::size_t>(LEAD + NB * j) * W;
+  static MD_INLINE void loadInterval(double* panel, const RowSource& in, int j) {
+    const double* const src = in.interval0 + in.step * j;
     for (int q = 0; q < NB; q += 8)
-      for (int c = 0; c < W; c += 8) transpose8(src + q * W + c, W, column(panel, c) + q, LANES);
+      for (int c = 0; c < W; c += 8)
+        transpose8(src + q * W + (in.swap ? (c + NB) % W : c), W, column(panel, c) + q, LANES);
   }
 
   /// Eliminates the NB columns of a panel: count interval rows (slots 0 ..) and the LEAD carried
@@ -223,7 +224,7 @@ struct ColumnLU {
 };
 
 template <int NB, int LEAD>
-int factor(int n, const double* rows, double* panels, double* inv_diag, int* perm) {
+int factor(int n, const RowSource& in, double* panels, double* inv_diag, int* perm, Panels part) {
   typedef ColumnLU<NB, LEAD> B;
   constexpr int M = B::M, W = B::W, LANES = B::LANES;
   const int nodes = n / NB;
@@ -232,24 +233,29 @@ int factor(int n, const double* rows, double* panels, double* inv_diag, int* per
   auto loadTop = [&](double* P, int j) {
     for (int c = 0; c < NB; ++c)
       for (int q = 0; q < NB - LEAD; ++q)
-        B::column(P, c)[q] = rows[static_cast<std::size_t>(LEAD + NB * j + q) * W + static_cast<std::size_t>(c)];
+        B::column(P, c)[q] = in.own[static_cast<std::size_t>(q) * W + static_cast<std::size_t>(c)];
   };
-  // Panel 0's carried slots: the anchor rows, on node 0.
-  for (int c = 0; c < W; ++c)
-    for (int r = 0; r < LEAD; ++r)
-      B::column(panel(0), c)[NB + r] = c < NB ? rows[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c)] : 0.0;
-  if (nodes > 1) B::loadInterval(panel(0), rows, 0);
-  else loadTop(panel(0), 0);
-  alignas(64) double staged[NB * LANES];  // the leftover rows' node j + 1 part, by slot
-  for (int j = 0; j + 1 < nodes; ++j) {
-    double* const P = panel(j);
-    double* const Q = panel(j + 1);
-    if (j + 2 < nodes) B::loadInterval(Q, rows, j + 1);
-    else loadTop(Q, j + 1);
-    if (const int k = B::template panel<W>(P, NB, inv_diag + NB * j, perm + M * j, staged)) return NB * j + k;
-    B::carry(staged, perm + M * j + NB, Q);
-  }
   const int j = nodes - 1;
+  if (part != Panels::kLast) {
+    // Panel 0's carried slots: the anchor rows, on node 0.
+    for (int c = 0; c < W; ++c)
+      for (int r = 0; r < LEAD; ++r)
+        B::column(panel(0), c)[NB + r] = c < NB ? in.lead[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c)] : 0.0;
+    if (nodes > 1) B::loadInterval(panel(0), in, 0);
+    else loadTop(panel(0), 0);
+    alignas(64) double staged[NB * LANES];  // the leftover rows' node j + 1 part, by slot
+    for (int i = 0; i + 1 < nodes; ++i) {
+      double* const P = panel(i);
+      double* const Q = panel(i + 1);
+      if (i + 2 < nodes) B::loadInterval(Q, in, i + 1);
+      else if (part == Panels::kAll) loadTop(Q, i + 1);
+      if (const int k = B::template panel<W>(P, NB, inv_diag + NB * i, perm + M * i, staged)) return NB * i + k;
+      B::carry(staged, perm + M * i + NB, Q);
+    }
+    if (part == Panels::kInner) return 0;
+  } else {
+    loadTop(panel(j), j);
+  }
   if (const int k = B::template panel<NB>(panel(j), NB - LEAD, inv_diag + NB * j, perm + M * j, nullptr))
     return NB * j + k;
   return 0;

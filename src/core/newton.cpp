@@ -35,8 +35,11 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
   const int n = system.size();
   BandedMatrix local;
   BandedMatrix& J = workspace ? *workspace : local;
-  if (J.size() != n || J.lower() != system.lowerBandwidth() || J.upper() != system.upperBandwidth())
+  if (J.size() != n || J.lower() != system.lowerBandwidth() || J.upper() != system.upperBandwidth()) {
+    ForkJoin* const fork = J.parallel();  // (the workspace's threads stay with it)
     J = BandedMatrix(n, system.lowerBandwidth(), system.upperBandwidth());
+    J.setParallel(fork);
+  }
   J.setBlockStructure(system.blockSize(), system.leadingRows());
   Eigen::VectorXd R(n), dY(n), inv_chi(n);
   for (int i = 0; i < n; ++i) inv_chi[i] = 1.0 / system.scale(i);

@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "mooring_dynamics/core/banded_matrix.hpp"
+#include "mooring_dynamics/core/fork_join.hpp"
 
 using mooring_dynamics::core::BandedMatrix;
 
@@ -257,10 +258,13 @@ TEST(BandedMatrix, BlockStructureMustFitTheBand) {
   EXPECT_EQ(A.get(0, 8), 0.0);
 }
 
-// A zero column of a node is reported as that unknown by the block elimination as well.
+// A zero column of a node is reported as that unknown by the block elimination as well: in the
+// lower sweep (nodes 0, 1), at the meeting node (2) and in the upper sweep (3, 4) of the
+// two-ended elimination of five nodes.
 TEST(BandedMatrix, BlockEliminationReportsZeroPivotColumn) {
   std::mt19937 rng(5);
-  for (int c : {0, 13, 39}) {
+  ASSERT_EQ(BandedMatrix::meetingNode(5), 2);
+  for (int c : {0, 13, 20, 26, 39}) {
     BandedMatrix A(40, 12, 10);
     A.setBlockStructure(8, 5);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -349,4 +353,37 @@ TEST(BandedMatrix, BlockKernelsMatchDensePartialPivLU) {
         }
       }
   EXPECT_GT(compared, 100);  // most draws are regular and well conditioned
+}
+
+// The two sweeps of the two-ended elimination on a second thread (setParallel): the factor and
+// the solutions are those of the one-thread elimination bit for bit, for every structure, and a
+// matrix with fewer than four nodes (one-ended) is unaffected.
+TEST(BandedMatrix, ParallelSweepsSolveBitForBitAsOneThread) {
+  struct Structure {
+    int block, lead;
+  };
+  mooring_dynamics::core::ForkJoin fork;
+  std::mt19937 rng(47);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const Structure s : {Structure{8, 5}, Structure{16, 10}, Structure{16, 7}})
+    for (int nodes : {3, 4, 9, 60}) {
+      const int n = s.block * nodes, kl = s.lead + s.block - 1, ku = 2 * s.block - 1 - s.lead;
+      BandedMatrix A(n, kl, ku), B(n, kl, ku);
+      A.setBlockStructure(s.block, s.lead);
+      B.setBlockStructure(s.block, s.lead);
+      B.setParallel(&fork);
+      for (int round = 0; round < 3; ++round) {  // reassembled: the storage is reused
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j)
+            if (A.inBand(i, j) && A.inPattern(i, j)) A.at(i, j) = B.at(i, j) = u(rng);
+        ASSERT_EQ(A.factorize(), 0);
+        ASSERT_EQ(B.factorize(), 0);
+        const Eigen::VectorXd b = randomVector(n, rng);
+        Eigen::VectorXd x = b, y = b;
+        A.solve(x);
+        B.solve(y);
+        for (int i = 0; i < n; ++i)
+          ASSERT_EQ(x[i], y[i]) << "block " << s.block << " lead " << s.lead << " nodes " << nodes << " row " << i;
+      }
+    }
 }

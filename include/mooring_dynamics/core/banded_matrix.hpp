@@ -18,6 +18,8 @@
 namespace mooring_dynamics {
 namespace core {
 
+class ForkJoin;
+
 /// Allocator of cache-line aligned storage: the rows of the block structure are 2 block doubles
 /// (a multiple of 64 bytes), so that their vectors never straddle two lines.
 template <class T>
@@ -108,10 +110,25 @@ class BandedMatrix {
   /// statics, are compiled with fixed loop lengths: at these widths LAPACK's unblocked dgbtf2
   /// spends most of its time in the per-column BLAS calls (idamax, dswap, dscal, dger); other
   /// bandwidths call dgbtrf.
+  ///
+  /// With a block structure of four nodes or more the elimination runs from both ends and meets
+  /// in the middle (twisted): node by node from the first node up to the middle one, and from
+  /// the last node down to the one above it (the mirror: the same kernel on the upper nodes in
+  /// reverse order), whose leftover rows join the middle node's. The two sweeps are independent
+  /// and run at the same time when setParallel() gave a ForkJoin; they do the same operations
+  /// either way, so the factor and the solutions do not depend on it.
   int factorize();
   bool factorized() const { return factorized_; }
-  /// Solve A x = b in place with the factorization.
+  /// Solve A x = b in place with the factorization (not reentrant: the two-ended solve keeps
+  /// its mirror's right-hand side in the matrix).
   void solve(Eigen::VectorXd& b) const;
+  /// Run the two sweeps of the block elimination and of its solves on `fork` (null: one after
+  /// the other). Not owned; must outlive its use here.
+  void setParallel(ForkJoin* fork) { fork_ = fork; }
+  ForkJoin* parallel() const { return fork_; }
+  /// The node where the two sweeps of a block structure of `nodes` nodes meet, or 0 when its
+  /// elimination is one-ended (fewer than four nodes: the mirror needs an inner node).
+  static int meetingNode(int nodes) { return nodes >= 4 ? nodes / 2 : 0; }
 
  private:
   int n_ = 0, kl_ = 0, ku_ = 0, ldab_ = 1;
@@ -130,6 +147,15 @@ class BandedMatrix {
   std::vector<double, CacheLineAllocator<double>> panels_;
   std::vector<double> inv_diag_; ///< reciprocals of U's diagonal (block elimination)
   std::vector<int> perm_;        ///< block elimination: panel row at each position
+  /// Two-ended block elimination (factorize): the meeting node (0: one-ended) and the mirror,
+  /// the nodes meet_ .. last in reverse order as a block structure of its own (its lead rows
+  /// the last node's rows, its intervals with their two nodes swapped), with its storage.
+  int meet_ = 0;
+  std::vector<double, CacheLineAllocator<double>> mirror_rows_, mirror_carried_, mirror_panels_;
+  std::vector<double> mirror_inv_diag_;
+  std::vector<int> mirror_perm_;
+  mutable std::vector<double> mirror_b_;  ///< solve: the mirror's right-hand side
+  ForkJoin* fork_ = nullptr;
 
 };
 

@@ -1,0 +1,74 @@
+// Two-way fork-join on one persistent worker thread: the dynamic solvers split the assembly and
+// the elimination of a Newton iteration into two halves (dynamics.threads = 2). The halves do
+// the same operations whether they run one after the other or at the same time, so results do
+// not depend on the number of threads.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <type_traits>
+
+namespace mooring_dynamics {
+namespace core {
+
+class ForkJoin {
+ public:
+  ForkJoin();  ///< starts the worker thread
+  ~ForkJoin();  ///< stops and joins it
+  ForkJoin(const ForkJoin&) = delete;
+  ForkJoin& operator=(const ForkJoin&) = delete;
+
+  /// Runs a() on the calling thread and b() on the worker; returns when both are done. An
+  /// exception thrown by either is rethrown here after both have finished (a's first). Not
+  /// reentrant: one caller at a time, and not from inside a() or b().
+  template <class A, class B>
+  void run(A&& a, B&& b) {
+    post(&invoke<std::remove_reference_t<B>>, &b);
+    std::exception_ptr error;
+    try {
+      a();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    const std::exception_ptr worker_error = wait();
+    if (error) std::rethrow_exception(error);
+    if (worker_error) std::rethrow_exception(worker_error);
+  }
+
+  /// How long the worker keeps polling for the next job before it sleeps on a condition
+  /// variable [s]: the gaps between the parallel parts of a Newton iteration are microseconds,
+  /// and waking a sleeping thread costs tens of them; between time steps of a node that waits
+  /// for its next input the worker does not hold a core.
+  static constexpr double kSpinSeconds = 200e-6;
+
+ private:
+  template <class F>
+  static void invoke(void* f) {
+    (*static_cast<F*>(f))();
+  }
+  void post(void (*fn)(void*), void* arg);
+  std::exception_ptr wait();
+  void loop();
+
+  // The flags each thread polls on cache lines of their own (128 bytes: the adjacent-line
+  // prefetcher pairs lines), so that no other write to memory nearby invalidates them.
+  static constexpr std::size_t kLine = 128;
+  alignas(kLine) std::atomic<unsigned> posted_{0};  ///< jobs posted (the worker runs job posted_ when > done_)
+  std::atomic<bool> stop_{false};
+  std::atomic<bool> sleeping_{false};
+  void (*fn_)(void*) = nullptr;
+  void* arg_ = nullptr;
+  alignas(kLine) std::atomic<unsigned> done_{0};    ///< jobs finished
+  std::exception_ptr error_;
+  alignas(kLine) char end_[1] = {};
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread worker_;
+};
+
+}  // namespace core
+}  // namespace mooring_dynamics
