@@ -1,19 +1,21 @@
 // Dynamic-solver cost (paper sections 4 and 6: generalized-alpha step, Newton with adaptive
 // relaxation, node-by-node block LU of the half-grid box scheme).
 //
-// BM_DynamicStepCost/<nodes>: cost of one time step against node count. A grounded chain (the
+// BM_DynamicStepCost/<nodes>/<threads>: cost of one time step against node count. A grounded chain (the
 // line of bench_static: 250 m of 76 mm chain in 100 m of water, top held at (200, 0), about 100 m
 // on the bottom) is heaved at the top, z = z0 + 1 m (1 - cos(2 pi t / 10 s)), which starts from
 // rest so no start-up transient forces step cuts; lambda_inf = -0.5, dt = 0.1 s, 50 steps (5 s)
 // per iteration. Only advanceTo() is timed (manual time); building the mesh and the static start
 // is not. Counters: nodes, steps, cuts, newton_iters (per iteration of the benchmark, i.e. per
 // 50 steps; scripts/bench divides the wall time by nodes * newton_iters), newton_per_step,
-// ns_per_step_node (wall time / (steps * nodes)).
+// ns_per_step_node (wall time / (steps * nodes)). <threads>: dynamics.threads (1 or 2; the
+// second thread takes the upper half of every Newton iteration, same results).
 //
 // BM_ChainMooringRealTimeFactor: the paper's A.3 all-chain mooring (config/chain_mooring.yaml,
 // 2 m / 8 s heave, lambda_inf = -0.5 as shipped), 300 s at a 0.1 s base step, and
 // BM_STetherRealTimeFactor: the A.2 deepwater S-tether (config/s_tether.yaml, Hs 9.8 m random
-// sea, wave-following buoy), 600 s at 0.1 s: the issue's speed cases. Each runs runDynamic
+// sea, wave-following buoy), 600 s at 0.1 s: the issue's speed cases, with 1 and 2 threads
+// (argument). Each runs runDynamic
 // (static start, time stepping and recording, as `cable_sim dynamic`, without snapshots); the
 // time is the wall time of the whole run. Counter real_time_factor = simulated / wall time. The
 // files are found through the environment variable MD_ROOT (exported by scripts/env.sh);
@@ -59,7 +61,8 @@ md::Problem heavedChain(int nodes) {
 
 void BM_DynamicStepCost(benchmark::State& state) {
   const int nodes = static_cast<int>(state.range(0));
-  const md::Problem problem = heavedChain(nodes);
+  md::Problem problem = heavedChain(nodes);
+  problem.dynamics.threads = static_cast<int>(state.range(1));
   long steps = 0, cuts = 0, newton = 0, iterations = 0;
   std::size_t node_count = 0;
   double seconds = 0.0;
@@ -99,6 +102,7 @@ void runShippedCase(benchmark::State& state, const std::string& file, double dur
   problem.dynamics.duration = duration;
   problem.dynamics.dt = dt;
   problem.dynamics.output_interval = 0.0;
+  problem.dynamics.threads = static_cast<int>(state.range(0));
   md::DynamicSeries r;
   double seconds = 0.0;
   long iterations = 0;
@@ -131,16 +135,12 @@ void BM_STetherRealTimeFactor(benchmark::State& state) { runShippedCase(state, "
 }  // namespace
 
 BENCHMARK(BM_DynamicStepCost)
-    ->Arg(50)
-    ->Arg(100)
-    ->Arg(200)
-    ->Arg(500)
-    ->Arg(1000)
-    ->Arg(2000)
+    ->ArgsProduct({{50, 100, 200, 500, 1000, 2000}, {1, 2}})
+    ->ArgNames({"nodes", "threads"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
-BENCHMARK(BM_ChainMooringRealTimeFactor)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK(BM_STetherRealTimeFactor)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ChainMooringRealTimeFactor)->ArgName("threads")->Arg(1)->Arg(2)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_STetherRealTimeFactor)->ArgName("threads")->Arg(1)->Arg(2)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_MAIN();

@@ -182,6 +182,7 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
     << "  \"cuts\": " << r.cuts << ",\n"
     << "  \"newton_iterations\": " << r.newton_iterations << ",\n"
     << "  \"jacobians\": " << r.jacobians << ",\n"
+    << "  \"threads\": " << d.threads << ",\n"
     << "  \"wall_seconds\": " << jsonNum(r.wall_seconds) << ",\n"
     << "  \"real_time_factor\": " << jsonNum(g.rtf) << ",\n"
     << "  \"record_s\": [";
@@ -215,7 +216,8 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
   if (r.jacobians > 0 && r.jacobians != r.newton_iterations) o << " (" << r.jacobians << " Jacobians)";
   o << "\n";
   o << "  wall time      " << fmtNum("%.3g", r.wall_seconds) << " s, real-time factor "
-    << (std::isfinite(g.rtf) ? fmtNum("%.3g", g.rtf) : std::string("inf")) << "\n";
+    << (std::isfinite(g.rtf) ? fmtNum("%.3g", g.rtf) : std::string("inf"))
+    << (d.threads > 1 ? ", " + std::to_string(d.threads) + " threads" : std::string()) << "\n";
   return o.str();
 }
 
@@ -242,6 +244,12 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
                        args.values.at("scheme") + "'");
     }
   }
+  int threads = 1;
+  if (args.has("threads")) {
+    const std::string& v = args.values.at("threads");
+    if (v != "1" && v != "2") throw UsageError("option '--threads' needs 1 or 2, got '" + v + "'");
+    threads = v == "2" ? 2 : 1;
+  }
   if (args.has("lambda-inf")) {
     lambda_inf = parseFiniteDouble("lambda-inf", args.values.at("lambda-inf"), "a number in [-1, 1)");
     if (!(lambda_inf >= -1.0 && lambda_inf < 1.0))
@@ -252,6 +260,7 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
   const auto overrides = [&](core::DynamicOptions& dyn) {
     if (args.has("duration")) dyn.duration = duration;
     if (args.has("dt")) dyn.dt = dt;
+    if (args.has("threads")) dyn.threads = threads;
     if (args.has("scheme")) {
       dyn.scheme = scheme;
       dyn.scheme_name = args.values.at("scheme");

@@ -11,6 +11,7 @@
 #include "mooring_dynamics/core/dynamic_run.hpp"
 #include "mooring_dynamics/core/dynamic_interval.hpp"
 #include "mooring_dynamics/core/equations2d_dynamic.hpp"
+#include "mooring_dynamics/core/fork_join.hpp"
 #include "mooring_dynamics/core/mesh.hpp"
 #include "mooring_dynamics/core/newton.hpp"
 #include "mooring_dynamics/core/statics2d.hpp"
@@ -58,9 +59,30 @@ struct DynamicSolver2D::Impl {
   double chi[N];
   Totals totals;
   BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
+  /// The second thread (dynamics.threads = 2; null with one): assembles and eliminates the
+  /// upper half of the line (inHalves, BandedMatrix::setParallel).
+  std::unique_ptr<ForkJoin> fork;
   double factored_dt = 0.0;    ///< step size the factorization in newton_matrix belongs to [s]
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
+
+  /// f(0, m) and f(m, end): the second half on the fork's worker when there is one (at the
+  /// same time as the first), else after the first; f(0, end) when m = 0.
+  template <class F>
+  void inHalves(int m, int end, const F& f) const {
+    if (m == 0) {
+      f(0, end);
+      return;
+    }
+    auto lower = [&] { f(0, m); };
+    auto upper = [&] { f(m, end); };
+    if (fork) {
+      fork->run(lower, upper);
+    } else {
+      lower();
+      upper();
+    }
+  }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 
   /// Water at node j, at (x, z) and the time last given to wave_cache.setTime.
@@ -181,7 +203,6 @@ class DynamicStepSystem : public NewtonSystem {
     const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
     const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
     R.resize(size());
-    im_.waterField(Y, t_, water_);
     const Eigen::VectorXd& Yp = im_.Y;
     const Eigen::VectorXd& Ydp = im_.Yd;
 
@@ -200,70 +221,94 @@ class DynamicStepSystem : public NewtonSystem {
       J->at(4, Z) = 1.0;
     }
 
-    // Weighted rates (eq. 30) and cos, sin of the inclination at every node, once per evaluation.
+    // The line in two halves, nodes [0, m) and [m, n), as the Newton matrix's two-ended
+    // elimination splits it (both on im_.fork when there is one: each thread then assembles
+    // the rows it eliminates).
+    const int m = BandedMatrix::meetingNode(n);
+    im_.wave_cache.setTime(t_);
+    water_.resize(static_cast<std::size_t>(n));
     ydw_.resize(Y.size());
-    for (Eigen::Index i = 0; i < Y.size(); ++i)
-      ydw_[i] = (1.0 - am) * (c1 * (Y[i] - Yp[i]) - c0 * Ydp[i]) + am * Ydp[i];
     c_.resize(static_cast<std::size_t>(n));
     s_.resize(static_cast<std::size_t>(n));
-    for (int j = 0; j < n; ++j) {
-      c_[static_cast<std::size_t>(j)] = std::cos(Y[N * j + PHI]);
-      s_[static_cast<std::size_t>(j)] = std::sin(Y[N * j + PHI]);
-    }
+    // Water, weighted rates (eq. 30) and cos, sin of the inclination at every node.
+    auto nodeValues = [&](int j0, int j1) {
+      for (int j = j0; j < j1; ++j) {
+        const std::size_t a = static_cast<std::size_t>(j);
+        water_[a] = im_.waterAt(j, Y[N * j + X], Y[N * j + Z]);
+        for (int k = N * j; k < N * (j + 1); ++k)
+          ydw_[k] = (1.0 - am) * (c1 * (Y[k] - Yp[k]) - c0 * Ydp[k]) + am * Ydp[k];
+        c_[a] = std::cos(Y[N * j + PHI]);
+        s_[a] = std::sin(Y[N * j + PHI]);
+      }
+    };
+    im_.inHalves(m, n, nodeValues);
+
     const StepWeights wts{ak, (1.0 - am) * c1};
-    double Jl[N][2 * N];
     std::vector<NodeTerms>& terms = im_.node_terms;
     terms.resize(static_cast<std::size_t>(n));
     terms_material_.assign(static_cast<std::size_t>(n), -1);  // none computed yet
-
-    for (int j = 0; j + 1 < n; ++j) {
-      const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
-      const int row = kAnchorRows + N * j;
-      const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
-      if (iv.h > 0.0) {
-        // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp), from the terms of
-        // its nodes, each computed once for the intervals of one material it belongs to.
-        const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
-        const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
-        const Material& m = im_.problem.materials[iv.material];
-        auto termsOf = [&](std::size_t node, const NodeView& now) -> const NodeTerms& {
-          if (terms_material_[node] != static_cast<long>(iv.material)) {
-            const NodeView prev{Yp.data() + N * node, im_.cos_phi[node], im_.sin_phi[node], &im_.water[node]};
-            nodeStepTerms(im_.problem.environment, m, now, prev, ydw_.data() + N * node, wts, J != nullptr,
-                          terms[node]);
-            terms_material_[node] = static_cast<long>(iv.material);
-          }
-          return terms[node];
-        };
-        const NodeTerms& ta = termsOf(a, na);
-        const NodeTerms& tb = termsOf(b, nb);
-        // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
-        double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
-        intervalStepRows(m, iv.h, na, nb, ta, tb, wts, im_.S.data() + N * j, R.data() + row, J ? Jrows : nullptr);
-        if (J && Jrows == Jl)
-          for (int q = 0; q < N; ++q)
-            for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
-        continue;
-      }
-      // Junction (pin) rows: few, left to automatic differentiation (only their non-zero
-      // entries written); in double when only the residual is asked for.
-      if (J) {
-        J->setZeroRows(row, N);
-        AD16 r[N];
-        junctionRows(j, iv, Y, c1, c0, r);
-        for (int q = 0; q < N; ++q) {
-          R[row + q] = r[q].value();
-          for (int k = 0; k < 2 * N; ++k) {
-            const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
-            if (d != 0.0) J->at(row + q, N * j + k) = d;
-          }
+    // Intervals [j0, j1): the terms of node j0 > 0 are also the lower half's (its last
+    // interval's upper node), so the upper half computes them in a place of its own.
+    auto intervals = [&](int j0, int j1) {
+      double Jl[N][2 * N];
+      NodeTerms first_terms;
+      long first_material = -1;
+      for (int j = j0; j < j1; ++j) {
+        const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
+        const int row = kAnchorRows + N * j;
+        const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+        if (iv.h > 0.0) {
+          // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp), from the terms of
+          // its nodes, each computed once for the intervals of one material it belongs to.
+          const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
+          const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
+          const Material& m_iv = im_.problem.materials[iv.material];
+          auto termsOf = [&](std::size_t node, const NodeView& now) -> const NodeTerms& {
+            const bool own = j0 > 0 && node == static_cast<std::size_t>(j0);
+            long& material = own ? first_material : terms_material_[node];
+            NodeTerms& t = own ? first_terms : terms[node];
+            if (material != static_cast<long>(iv.material)) {
+              const NodeView prev{Yp.data() + N * node, im_.cos_phi[node], im_.sin_phi[node], &im_.water[node]};
+              nodeStepTerms(im_.problem.environment, m_iv, now, prev, ydw_.data() + N * node, wts, J != nullptr, t);
+              material = static_cast<long>(iv.material);
+            }
+            return t;
+          };
+          const NodeTerms& ta = termsOf(a, na);
+          const NodeTerms& tb = termsOf(b, nb);
+          // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
+          double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
+          intervalStepRows(m_iv, iv.h, na, nb, ta, tb, wts, im_.S.data() + N * j, R.data() + row, J ? Jrows : nullptr);
+          if (J && Jrows == Jl)
+            for (int q = 0; q < N; ++q)
+              for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
+          continue;
         }
-      } else {
-        junctionRows(j, iv, Y, c1, c0, R.data() + row);
+        // Junction (pin) rows: few, left to automatic differentiation (only their non-zero
+        // entries written); in double when only the residual is asked for.
+        if (J) {
+          J->setZeroRows(row, N);
+          AD16 r[N];
+          junctionRows(j, iv, Y, c1, c0, r);
+          for (int q = 0; q < N; ++q) {
+            R[row + q] = r[q].value();
+            for (int k = 0; k < 2 * N; ++k) {
+              const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
+              if (d != 0.0) J->at(row + q, N * j + k) = d;
+            }
+          }
+        } else {
+          junctionRows(j, iv, Y, c1, c0, R.data() + row);
+        }
       }
-    }
+    };
+    im_.inHalves(m, n - 1, intervals);
+    topRows(Y, R, J);
+  }
 
-    // Top: moment free, plus prescribed velocity (eq. 34), position or force.
+  /// The top's rows: moment free, plus prescribed velocity (eq. 34), position or force.
+  void topRows(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) const {
+    const int n = im_.nodes();
     const int top = N * (n - 1);
     const int row = kAnchorRows + N * (n - 1);
     AD8 y[N];
@@ -407,6 +452,10 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
   im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
   im.current = CurrentProfile(problem.environment.current);
+  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
+    im.fork = std::make_unique<ForkJoin>();
+    im.newton_matrix.setParallel(im.fork.get());
+  }
 
   // Top motion: the 3-D source projected on the x-z plane, started at the static top (y = 0).
   const NodeState& topNode = im.statics.nodes.back();

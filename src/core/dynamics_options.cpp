@@ -70,6 +70,7 @@ std::string DynamicOptions::validate() const {
   if (max_iterations < 1) return k + "max_iterations = " + std::to_string(max_iterations) + ": must be >= 1";
   if (!(std::isfinite(relaxation) && relaxation > 0.0 && relaxation <= 1.0))
     return bad(k + "relaxation", relaxation, "must be in (0, 1]");
+  if (threads < 1 || threads > 2) return k + "threads = " + std::to_string(threads) + ": must be 1 or 2";
   if (!(std::isfinite(mesh_weight) && mesh_weight >= 0.0)) return bad(k + "mesh_weight", mesh_weight, "must be >= 0");
   return top_motion.validate();
 }

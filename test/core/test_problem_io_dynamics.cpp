@@ -79,6 +79,7 @@ TEST(ProblemIo, ParsesDynamicsSection) {
   max_iterations: 40
   relaxation: 0.8
   adaptive_relaxation: false
+  threads: 2
   adaptive_mesh: true
   mesh_weight: 15
   top_motion: {type: sinusoid, amplitude_x: 0.5, amplitude_z: 2.0, period: 8, phase_deg: 90, prescribe: position}
@@ -97,6 +98,7 @@ TEST(ProblemIo, ParsesDynamicsSection) {
   EXPECT_EQ(d.max_cut_levels, 3);
   EXPECT_DOUBLE_EQ(d.tolerance, 1e-7);
   EXPECT_EQ(d.max_iterations, 40);
+  EXPECT_EQ(d.threads, 2);
   EXPECT_DOUBLE_EQ(d.relaxation, 0.8);
   EXPECT_FALSE(d.adaptive_relaxation);
   EXPECT_TRUE(d.adaptive_mesh);
@@ -167,6 +169,8 @@ TEST(ProblemIo, DynamicsValueErrorsNameKeyValueAndLine) {
   EXPECT_ERROR_HAS(minimalWith("dynamics: {record_s: 10}\n"), "dynamics.record_s", "expected a list");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {max_cut_levels: 9}\n"), "dynamics.max_cut_levels = 9", "[0, 8]");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {max_cut_levels: 1.5}\n"), "dynamics.max_cut_levels", "integer");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {threads: 4}\n"), "dynamics.threads = 4", "1 or 2");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {threads: two}\n"), "dynamics.threads", "integer");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {max_iterations: 0}\n"), "dynamics.max_iterations = 0");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {tolerance: 0}\n"), "dynamics.tolerance = 0", "> 0");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {relaxation: 1.5}\n"), "dynamics.relaxation = 1.5", "(0, 1]");

@@ -71,6 +71,11 @@ struct DynamicOptions {
   /// contact events make the Jacobian jump (it changed where the 2-D chain mooring cut steps).
   bool jacobian_reuse = false;
 
+  /// Threads of the 2-D dynamic solver, 1 or 2: with 2 a second thread assembles and
+  /// eliminates the upper half of the line in every Newton iteration (the Newton matrix's
+  /// two-ended elimination, BandedMatrix::factorize). The results are the same bit for bit.
+  int threads = 1;
+
   bool adaptive_mesh = false;    ///< section 3, eqs. 15-24
   double mesh_weight = 20.0;     ///< c_w of eq. 15
 

@@ -106,6 +106,8 @@ class WaveVelocityCache {
   void setTime(double t);
   /// (vx, vz) at point i at (x, 0, z) and the time of setTime [m/s]. (With horizontal_plane, x
   /// is the distance along the direction of travel and vx the horizontal velocity along it.)
+  /// Changes only point i's state: calls for different points may run on different threads
+  /// (between two setTime calls).
   void velocity(std::size_t i, double x, double z, double& vx, double& vz);
   /// (vx, vy, vz) at point i at (x, y, z) and the time of setTime [m/s]: WaveField::velocity up
   /// to rounding, for a cache built with horizontal_plane (std::logic_error otherwise). The
