@@ -543,7 +543,7 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   Eigen::VectorXd Y = im.Y + dt * im.Yd;  // predictor: constant rate
   const NewtonOptions no = stepNewtonOptions(im.opt);
   // A kept factorization (modified Newton) belongs to one step size.
-  if (dt != im.factored_dt) im.newton_matrix.setZero();
+  if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
   NewtonWork work;
   const SolverSummary s = solveNewton(sys, Y, no, &im.newton_matrix, &work);
   im.factored_dt = dt;

@@ -481,10 +481,10 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   // Predictor: constant rate; with modified Newton (smooth problems) the rate's change over the
   // last step of the same size is extrapolated too, which starts the iteration closer.
   Eigen::VectorXd Yv = im.Y + dt * im.Yd;
-  if (im.opt.jacobian_reuse && im.last_dt == dt && im.Yd_prev.size() == im.Yd.size())
+  if (im.opt.jacobian_reuse && sameStepSize(im.last_dt, dt) && im.Yd_prev.size() == im.Yd.size())
     Yv += 0.5 * dt * (im.Yd - im.Yd_prev);
   // A kept factorization belongs to one step size (the matrix holds 1 / (gamma dt)).
-  if (dt != im.factored_dt) im.newton_matrix.setZero();
+  if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
   const NewtonOptions no = stepNewtonOptions(im.opt);
   NewtonWork work;
   const SolverSummary s = solveNewton(sys, Yv, no, &im.newton_matrix, &work);

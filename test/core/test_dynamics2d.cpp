@@ -697,3 +697,21 @@ TEST(Dynamics2D, ThreadsMustBeOneOrTwo) {
   EXPECT_NE(p.validate().find("dynamics.threads = 2: the 3-D model runs on one thread"), std::string::npos)
       << p.validate();
 }
+
+// Modified Newton (dynamics.jacobian_reuse) keeps the factorization from step to step of the
+// same size, also when a step lands on an output sample and its size t_end - t differs from
+// dt = 0.1 s in the last bits (it used to reassemble at most of those steps: 60 Jacobians in the
+// 100 steps below, now 4).
+TEST(Dynamics2D, JacobianReuseKeepsTheFactorizationAcrossOutputSamples) {
+  Problem p = loadProblemFromFile(std::string(MD_SOURCE_DIR) + "/config/s_tether.yaml");
+  p.dynamics.duration = 10.0;
+  p.dynamics.dt = 0.1;  // not a binary fraction: the sample times round
+  p.dynamics.output_interval = 0.0;
+  p.dynamics.jacobian_reuse = true;
+  const DynamicSeries r = runDynamic(p);
+  ASSERT_TRUE(r.completed) << r.message;
+  ASSERT_EQ(r.cuts, 0);
+  constexpr double kMaxJacobiansPerStep = 0.2;  // a smooth sea state: a fresh one now and then
+  EXPECT_LT(static_cast<double>(r.jacobians), kMaxJacobiansPerStep * static_cast<double>(r.steps))
+      << r.jacobians << " Jacobians in " << r.steps << " steps";
+}

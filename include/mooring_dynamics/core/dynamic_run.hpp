@@ -33,6 +33,14 @@ inline NewtonOptions stepNewtonOptions(const DynamicOptions& o) {
   return no;
 }
 
+/// Whether two step sizes are the same for a kept factorization or extrapolation: equal up to the
+/// rounding of t_end - t when a step lands on an output sample (dt = 0.1 s gives steps that
+/// differ from 0.1 in the last bits).
+inline bool sameStepSize(double a, double b) {
+  constexpr double kRelative = 1e-9;
+  return std::abs(a - b) <= kRelative * std::max(std::abs(a), std::abs(b));
+}
+
 namespace detail {
 /// Section 4.3: try a step; on failure cut it by 10 and take ten sub-steps, recursively, down to
 /// `max_levels` cuts. `t` is the solver's time, which try_step advances on success.

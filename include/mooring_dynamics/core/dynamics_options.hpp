@@ -65,8 +65,8 @@ struct DynamicOptions {
   int max_iterations = 30;       ///< Newton iterations per step before the step is cut
   double relaxation = 1.0;       ///< mu0 of the per-step Newton iteration
   bool adaptive_relaxation = true;
-  /// Modified Newton in the 3-D solver: keep a step's factored Jacobian for later iterations and
-  /// steps of the same size while each update shrinks by at least half (NewtonOptions). Same
+  /// Modified Newton: keep a step's factored Jacobian for later iterations and steps of the
+  /// same size while each update shrinks fast enough (NewtonOptions::reuse_rate). Same
   /// tolerance, fewer assemblies; off by default, worth it on smooth problems (a tow), not where
   /// contact events make the Jacobian jump (it changed where the 2-D chain mooring cut steps).
   bool jacobian_reuse = false;
