@@ -92,17 +92,6 @@ using block_lu::Panels;
 
 namespace {
 
-/// Runs a and b, on fork when given (a on this thread), else one after the other.
-template <class A, class B>
-void both(ForkJoin* fork, A&& a, B&& b) {
-  if (fork) {
-    fork->run(a, b);
-  } else {
-    a();
-    b();
-  }
-}
-
 // The two-ended block elimination (BandedMatrix::factorize): the lower sweep is the one-ended
 // kernel on nodes 0 .. meet, whose last node's own rows are the leftover rows of the upper
 // sweep (written where interval meet's first rows were, once the upper sweep has read them);
@@ -128,7 +117,7 @@ int twistedFactor(bool columns, int nodes, int meet, const BlockStorage& lower, 
     for (int r = 0; r < LM; ++r)
       for (int c = 0; c < NB; ++c) own[r * W + c] = left[r * NB + c];
   };
-  both(fork, lowerSweep, upperSweep);
+  runBoth(fork, lowerSweep, upperSweep);
   if (lower_info != 0) return lower_info;
   if (upper_info != 0) return upper_info;
   return blockFactor<NB, LEAD>(columns, NB * (meet + 1), lower, Panels::kLast);
@@ -147,7 +136,7 @@ void twistedSolve(bool columns, int nodes, int meet, const BlockStorage& lower, 
       for (int r = 0; r < NB; ++r) mb[LM + NB * i + r] = b[LEAD + NB * (nodes - 2 - i) + r];
     blockForward<NB, LM>(columns, NB * mirror_nodes, mirror, mb, Panels::kInner, carry_upper);
   };
-  both(fork, lowerForward, upperForward);
+  runBoth(fork, lowerForward, upperForward);
   // The meeting node: its own rows' right-hand side from the mirror, then its x.
   for (int q = 0; q < LM; ++q) b[LEAD + NB * meet + q] = carry_upper[q];
   blockForward<NB, LEAD>(columns, NB * (meet + 1), lower, b, Panels::kLast, carry_lower);
@@ -159,7 +148,7 @@ void twistedSolve(bool columns, int nodes, int meet, const BlockStorage& lower, 
     for (int i = 0; i + 1 < mirror_nodes; ++i)
       for (int k = 0; k < NB; ++k) b[NB * (nodes - 1 - i) + k] = mb[NB * i + k];
   };
-  both(fork, lowerBack, upperBack);
+  runBoth(fork, lowerBack, upperBack);
 }
 
 template <int NB, int LEAD>

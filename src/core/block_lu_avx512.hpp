@@ -230,7 +230,7 @@ int factor(int n, const RowSource& in, double* panels, double* inv_diag, int* pe
   const int nodes = n / NB;
   auto panel = [&](int j) { return panels + static_cast<std::size_t>(j) * W * LANES; };
   // The last node's own rows (fewer than NB: no whole blocks, and not past the matrix).
-  auto loadTop = [&](double* P, int j) {
+  auto loadTop = [&](double* P) {
     for (int c = 0; c < NB; ++c)
       for (int q = 0; q < NB - LEAD; ++q)
         B::column(P, c)[q] = in.own[static_cast<std::size_t>(q) * W + static_cast<std::size_t>(c)];
@@ -242,19 +242,19 @@ int factor(int n, const RowSource& in, double* panels, double* inv_diag, int* pe
       for (int r = 0; r < LEAD; ++r)
         B::column(panel(0), c)[NB + r] = c < NB ? in.lead[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c)] : 0.0;
     if (nodes > 1) B::loadInterval(panel(0), in, 0);
-    else loadTop(panel(0), 0);
+    else loadTop(panel(0));
     alignas(64) double staged[NB * LANES];  // the leftover rows' node j + 1 part, by slot
     for (int i = 0; i + 1 < nodes; ++i) {
       double* const P = panel(i);
       double* const Q = panel(i + 1);
       if (i + 2 < nodes) B::loadInterval(Q, in, i + 1);
-      else if (part == Panels::kAll) loadTop(Q, i + 1);
+      else if (part == Panels::kAll) loadTop(Q);
       if (const int k = B::template panel<W>(P, NB, inv_diag + NB * i, perm + M * i, staged)) return NB * i + k;
       B::carry(staged, perm + M * i + NB, Q);
     }
     if (part == Panels::kInner) return 0;
   } else {
-    loadTop(panel(j), j);
+    loadTop(panel(j));
   }
   if (const int k = B::template panel<NB>(panel(j), NB - LEAD, inv_diag + NB * j, perm + M * j, nullptr))
     return NB * j + k;

@@ -74,14 +74,7 @@ struct DynamicSolver2D::Impl {
       f(0, end);
       return;
     }
-    auto lower = [&] { f(0, m); };
-    auto upper = [&] { f(m, end); };
-    if (fork) {
-      fork->run(lower, upper);
-    } else {
-      lower();
-      upper();
-    }
+    runBoth(fork.get(), [&] { f(0, m); }, [&] { f(m, end); });
   }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 
@@ -176,18 +169,25 @@ class DynamicStepSystem : public NewtonSystem {
     os << "node " << j << " (s = " << im_.mesh.nodes[j].s << " m) " << kVarNames[i % N];
     return os.str();
   }
-  double stepLimit(const Eigen::VectorXd& dY) const override {
+  double stepLimit(const Eigen::VectorXd& dY) const override { return stepLimit(dY, 0, size()); }
+  double stepLimit(const Eigen::VectorXd& dY, int first, int end) const override {
     constexpr double kMaxAngleStep = 0.5;  // [rad], as in statics
     double largest = 0.0;
-    for (Eigen::Index i = PHI; i < dY.size(); i += N) largest = std::max(largest, std::abs(dY[i]));
+    for (int i = first + PHI; i < end; i += N) largest = std::max(largest, std::abs(dY[i]));
     return largest > kMaxAngleStep ? kMaxAngleStep / largest : 1.0;
   }
+
+  /// The Newton loop's vector work in the halves of the two-ended elimination (see evaluate).
+  bool splitsUpdate() const override { return true; }
 
   /// As in statics: a node off the seabed that would pass below its rest penetration stops there
   /// (Newton sees no foundation under it and would otherwise cycle through the contact).
   void conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY) const override {
+    conditionStep(Y, dY, 0, size());
+  }
+  void conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY, int first, int end) const override {
     const Environment& env = im_.problem.environment;
-    for (int j = 0; j < im_.nodes(); ++j) {
+    for (int j = first / N; j < end / N; ++j) {
       const Eigen::Index iz = N * j + Z;
       const double w = std::max(im_.mat(j).wet_weight, 0.0);
       const double rest = env.seabedElevation(Y[iz - 1]) - 1.5 * w / env.seabed.stiffness;

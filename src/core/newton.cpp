@@ -1,5 +1,7 @@
 #include "mooring_dynamics/core/newton.hpp"
 
+#include "mooring_dynamics/core/fork_join.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,19 +14,38 @@ namespace core {
 
 namespace {
 
-/// sigma = (1/(N n)) sum_m (1/chi_m) sum_j |dY_jm|   (eq. 39), with the largest term reported;
-/// inv_chi holds 1 / chi_m of every unknown.
-double scaledUpdate(const Eigen::VectorXd& inv_chi, const Eigen::VectorXd& dY, int* worst) {
+/// The sum over unknowns [first, end) of (1/chi_m) |dY_jm| (eq. 39), and its largest term and
+/// where (the first of them); inv_chi holds 1 / chi_m of every unknown.
+struct UpdateSum {
   double sum = 0.0, largest = -1.0;
-  for (int i = 0; i < dY.size(); ++i) {
+  int worst = 0;
+};
+UpdateSum scaledUpdateSum(const Eigen::VectorXd& inv_chi, const Eigen::VectorXd& dY, int first, int end) {
+  UpdateSum u;
+  u.worst = first;
+  for (int i = first; i < end; ++i) {
     const double term = std::abs(dY[i]) * inv_chi[i];
-    sum += term;
-    if (term > largest) {
-      largest = term;
-      if (worst) *worst = i;
+    u.sum += term;
+    if (term > u.largest) {
+      u.largest = term;
+      u.worst = i;
     }
   }
-  return sum / static_cast<double>(dY.size());
+  return u;
+}
+
+bool allFinite(const Eigen::VectorXd& v, int first, int end) { return v.segment(first, end - first).allFinite(); }
+
+/// The vector work of an iteration over the unknowns [0, split) and [split, n): each part on
+/// the thread whose rows it is (the Newton matrix's fork, or one after the other without one);
+/// without a split (split = 0) over [0, n) only. f(first, end, part) with part 0 or 1.
+template <class F>
+void inParts(ForkJoin* fork, int split, int n, const F& f) {
+  if (split == 0) {
+    f(0, n, 0);
+    return;
+  }
+  runBoth(fork, [&] { f(0, split, 0); }, [&] { f(split, n, 1); });
 }
 
 }  // namespace
@@ -43,6 +64,12 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
   J.setBlockStructure(system.blockSize(), system.leadingRows());
   Eigen::VectorXd R(n), dY(n), inv_chi(n);
   for (int i = 0; i < n; ++i) inv_chi[i] = 1.0 / system.scale(i);
+  // The vector work split as the elimination splits the nodes (eq. 39's sum in two parts then,
+  // with one thread or two), so that each half stays with the thread that assembles it.
+  const int nb = system.blockSize();
+  const int split = system.splitsUpdate() && J.blockRow(0) && nb > 0 ? nb * BandedMatrix::meetingNode(n / nb) : 0;
+  ForkJoin* const fork = J.parallel();
+  bool finite[2] = {true, true};
   double mu = options.mu0;
   double sigma_prev = 0.0;
   int worst = 0;
@@ -78,7 +105,12 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       system.evaluate(Y, R, nullptr);
       ++counts.residuals;
     }
-    if (!R.allFinite()) {
+    // dY = -R here already (the factorization does not need it), with the finiteness check.
+    inParts(fork, split, n, [&](int first, int end, int part) {
+      finite[part] = allFinite(R, first, end);
+      dY.segment(first, end - first) = -R.segment(first, end - first);
+    });
+    if (!(finite[0] && finite[1])) {
       if (!assembled && last_kept) {  // a kept Jacobian's update went bad: back, and assemble
         undoLastUpdate();
         fresh = true;
@@ -101,9 +133,19 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       }
       fresh = !options.reuse_jacobian;  // plain Newton assembles at every iterate
     }
-    dY = -R;
     J.solve(dY);
-    if (!dY.allFinite()) {
+    // Finiteness, the system's conditioning of the update, eq. 39's sum and the step limit.
+    UpdateSum sums[2];
+    double limit[2] = {1.0, 1.0};
+    inParts(fork, split, n, [&](int first, int end, int part) {
+      finite[part] = allFinite(dY, first, end);
+      if (!finite[part]) return;
+      if (split) system.conditionStep(Y, dY, first, end);
+      else system.conditionStep(Y, dY);
+      sums[part] = scaledUpdateSum(inv_chi, dY, first, end);
+      limit[part] = split ? system.stepLimit(dY, first, end) : system.stepLimit(dY);
+    });
+    if (!(finite[0] && finite[1])) {
       if (!assembled) {  // a kept factorization gone bad: try a fresh one at this iterate
         fresh = true;
         continue;
@@ -113,9 +155,9 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       if (work) *work = counts;
       return summary;
     }
-    system.conditionStep(Y, dY);
     // Error measure and adaptive relaxation (eqs. 39-41).
-    const double sigma = scaledUpdate(inv_chi, dY, &worst);
+    const double sigma = (split ? sums[0].sum + sums[1].sum : sums[0].sum) / static_cast<double>(n);
+    worst = split && sums[1].largest > sums[0].largest ? sums[1].worst : sums[0].worst;
     if (options.reuse_jacobian && !assembled && k > 0 && sigma > options.reuse_rate * sigma_prev) {
       // The kept Jacobian no longer contracts fast enough: assemble afresh and redo the update.
       // When it made the last update too and the iteration grew (a Jacobian kept from an
@@ -131,15 +173,17 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
     }
     sigma_before = sigma_prev;
     mu_before = mu;
-    if (options.reuse_jacobian) {
-      Y_before = Y;
-      last_kept = !assembled;
-    }
+    if (options.reuse_jacobian) last_kept = !assembled;
     sigma_prev = sigma;
     if (std::getenv("MD_NEWTON_TRACE"))
       std::fprintf(stderr, "newton %d sigma %.3e mu %.3e worst %s dY %.3e%s\n", k, sigma, mu,
                    system.describe(worst).c_str(), dY[worst], assembled ? "" : " (kept Jacobian)");
-    Y += std::min(mu, system.stepLimit(dY)) * dY;  // eq. 38
+    const double applied = std::min(mu, std::min(limit[0], limit[1]));
+    if (options.reuse_jacobian) Y_before.resize(n);
+    inParts(fork, split, n, [&](int first, int end, int) {
+      if (options.reuse_jacobian) Y_before.segment(first, end - first) = Y.segment(first, end - first);
+      Y.segment(first, end - first) += applied * dY.segment(first, end - first);  // eq. 38
+    });
     ++k;
     summary.iterations = k;
     summary.error = sigma;

@@ -70,5 +70,17 @@ class ForkJoin {
   std::thread worker_;
 };
 
+/// a() and b(): on `fork` at the same time when given (a on this thread), else one after the
+/// other.
+template <class A, class B>
+void runBoth(ForkJoin* fork, A&& a, B&& b) {
+  if (fork) {
+    fork->run(a, b);
+  } else {
+    a();
+    b();
+  }
+}
+
 }  // namespace core
 }  // namespace mooring_dynamics

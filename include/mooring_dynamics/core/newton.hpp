@@ -45,6 +45,21 @@ class NewtonSystem {
     (void)Y;
     (void)dY;
   }
+  /// A system whose blocks are nodes can have the vector work of an iteration split at the
+  /// Newton matrix's meeting node (BandedMatrix::meetingNode; on its second thread when it has
+  /// one): it then returns true and gives stepLimit and conditionStep on a range of whole nodes,
+  /// unknowns [first, end), with the whole-vector versions' values. Default: not split.
+  virtual bool splitsUpdate() const { return false; }
+  virtual double stepLimit(const Eigen::VectorXd& dY, int first, int end) const {
+    (void)first;
+    (void)end;
+    return stepLimit(dY);
+  }
+  virtual void conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY, int first, int end) const {
+    (void)first;
+    (void)end;
+    conditionStep(Y, dY);
+  }
 };
 
 struct NewtonOptions {
