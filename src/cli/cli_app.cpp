@@ -252,7 +252,7 @@ const std::vector<Command>& commands() {
            {"dt", 0, "S", "base time step [s] (overrides dynamics.dt)"},
            {"scheme", 0, "NAME", "box, trapezoidal, backward, lambda0, lambda-0.5 or lambda0.75 (paper Table 1)"},
            {"lambda-inf", 0, "X", "generalized-alpha with lambda_inf = X in [-1, 1) (eq. 29)"},
-           {"threads", 0, "N", "threads of the 2-D solver, 1 or 2 (overrides dynamics.threads; same results)"},
+           {"threads", 0, "N", "threads of the solver, 1 or 2 (overrides dynamics.threads; same results)"},
            {"no-progress", 0, nullptr, "no progress bar (shown on stderr only when it is a terminal)"},
            {"help", 'h', nullptr, "show this help"},
        },

@@ -66,15 +66,10 @@ struct DynamicSolver2D::Impl {
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
 
-  /// f(0, m) and f(m, end): the second half on the fork's worker when there is one (at the
-  /// same time as the first), else after the first; f(0, end) when m = 0.
+  /// core::inHalves on this solver's fork (the second thread, if any).
   template <class F>
   void inHalves(int m, int end, const F& f) const {
-    if (m == 0) {
-      f(0, end);
-      return;
-    }
-    runBoth(fork.get(), [&] { f(0, m); }, [&] { f(m, end); });
+    core::inHalves(fork.get(), m, end, f);
   }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 

@@ -9,6 +9,7 @@
 #include "mooring_dynamics/core/adaptive_mesh.hpp"
 #include "mooring_dynamics/core/drifting.hpp"
 #include "mooring_dynamics/core/dynamic_run.hpp"
+#include "mooring_dynamics/core/fork_join.hpp"
 #include "mooring_dynamics/core/equations3d.hpp"
 #include "mooring_dynamics/core/equations3d_drifter.hpp"
 #include "mooring_dynamics/core/mesh.hpp"
@@ -59,6 +60,9 @@ struct DynamicSolver3D::Impl {
   double chi[N];
   Totals totals;
   BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
+  /// The second thread (dynamics.threads = 2; null with one): assembles and eliminates the
+  /// upper half of the line, as in the 2-D solver.
+  std::unique_ptr<ForkJoin> fork;
   double factored_dt = 0.0;    ///< step size the factorization in newton_matrix belongs to [s]
   Eigen::VectorXd Yd_prev;     ///< rate before the last accepted step (second-order predictor)
   double last_dt = 0.0;        ///< size of the last accepted step [s]
@@ -151,15 +155,21 @@ class DynamicStepSystem3D : public NewtonSystem {
     os << "node " << j << " (s = " << im_.mesh.nodes[j].s << " m) " << varName(i % N);
     return os.str();
   }
-  double stepLimit(const Eigen::VectorXd& dY) const override {
+  double stepLimit(const Eigen::VectorXd& dY) const override { return stepLimit(dY, 0, size()); }
+  double stepLimit(const Eigen::VectorXd& dY, int first, int end) const override {
     constexpr double kMaxQuaternionStep = 0.25;  // about half a radian, as in statics
     double largest = 0.0;
-    for (Eigen::Index i = 0; i + N <= dY.size(); i += N) largest = std::max(largest, dY.segment<4>(i + Q0).norm());
+    for (int i = first; i + N <= end; i += N) largest = std::max(largest, dY.segment<4>(i + Q0).norm());
     return largest > kMaxQuaternionStep ? kMaxQuaternionStep / largest : 1.0;
   }
+  /// The Newton loop's vector work in the halves of the two-ended elimination (see evaluateAs).
+  bool splitsUpdate() const override { return true; }
   void conditionStep(const Eigen::VectorXd& Yv, Eigen::VectorXd& dY) const override {
+    conditionStep(Yv, dY, 0, size());
+  }
+  void conditionStep(const Eigen::VectorXd& Yv, Eigen::VectorXd& dY, int first, int end) const override {
     const Environment& env = im_.problem.environment;
-    for (int j = 0; j < im_.nodes(); ++j) {
+    for (int j = first / N; j < end / N; ++j) {
       const Eigen::Index i = N * j;
       const double w = std::max(im_.mat(j).wet_weight, 0.0);
       const double zb = env.seabedElevation(Yv[i + X], Yv[i + eq3d::Y]);
@@ -180,12 +190,36 @@ class DynamicStepSystem3D : public NewtonSystem {
   template <class S16, class S32>
   void evaluateAs(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) {
     const int n = im_.nodes();
+    R.resize(size());
+    // The line in two halves, nodes [0, m) and [m, n), as the Newton matrix's two-ended
+    // elimination splits it (both on im_.fork when there is one: each thread then assembles
+    // and clears the rows it eliminates, writesEveryBlockEntry).
+    const int m = BandedMatrix::meetingNode(n);
+    im_.wave_cache.setTime(t_);
+    water_.resize(static_cast<std::size_t>(n));
+    inHalves(im_.fork.get(), m, n, [&](int j0, int j1) {
+      for (int j = j0; j < j1; ++j)
+        water_[static_cast<std::size_t>(j)] = im_.waterAt(j, Yv[N * j + X], Yv[N * j + eq3d::Y], Yv[N * j + Z]);
+    });
+    inHalves(im_.fork.get(), m, n - 1, [&](int j0, int j1) {
+      const int first = j0 == 0 ? 0 : end_rows_ + N * j0;
+      const int last = j1 == n - 1 ? size() : end_rows_ + N * j1;
+      if (J) J->setZeroRows(first, last - first);
+      if (j0 == 0) endRows<S16>(Yv, R, J);
+      intervalRows<S32>(Yv, R, J, j0, j1);
+      if (j1 == n - 1) topRows<S16>(Yv, R, J);
+    });
+  }
+
+  /// Every entry of a block-structured J is written or cleared (setZeroRows), half by half.
+  bool writesEveryBlockEntry() const override { return true; }
+
+  /// The lower end's rows (node 0).
+  template <class S16>
+  void endRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
     const GeneralizedAlpha& ga = im_.ga;
     const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
     const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
-    const Environment& env = im_.problem.environment;
-    R.resize(size());
-    im_.waterField(Yv, t_, water_);
     const Eigen::VectorXd& Yp = im_.Y;
     const Eigen::VectorXd& Ydp = im_.Yd;
 
@@ -237,8 +271,18 @@ class DynamicStepSystem3D : public NewtonSystem {
       r[k0 + 3] = twistGauge(qp, y);
       scatter(r, end_rows_, 0, 0, N, R, J);
     }
+  }
 
-    for (int j = 0; j + 1 < n; ++j) {
+  /// The rows of intervals [j0, j1).
+  template <class S32>
+  void intervalRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1) const {
+    const GeneralizedAlpha& ga = im_.ga;
+    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
+    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
+    const Environment& env = im_.problem.environment;
+    const Eigen::VectorXd& Yp = im_.Y;
+    const Eigen::VectorXd& Ydp = im_.Yd;
+    for (int j = j0; j < j1; ++j) {
       const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
       const int row = end_rows_ + N * j;
       S32 y[2 * N], ydw[2 * N], yp[2 * N];
@@ -273,7 +317,18 @@ class DynamicStepSystem3D : public NewtonSystem {
         r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S[kInertiaRows * j + q]);
       scatter(r, N, row, N * j, 2 * N, R, J);
     }
+  }
 
+  /// The top's rows (the last node).
+  template <class S16>
+  void topRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
+    const int n = im_.nodes();
+    const GeneralizedAlpha& ga = im_.ga;
+    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
+    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
+    const Environment& env = im_.problem.environment;
+    const Eigen::VectorXd& Yp = im_.Y;
+    const Eigen::VectorXd& Ydp = im_.Yd;
     // Top: moment free, plus prescribed velocity (eq. 34), velocity with position feedback, or
     // force; a tow point (free lower end) also has its position prescribed.
     const int top = N * (n - 1);
@@ -407,6 +462,10 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
   im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size(), true);
   im.current = CurrentProfile(problem.environment.current);
+  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
+    im.fork = std::make_unique<ForkJoin>();
+    im.newton_matrix.setParallel(im.fork.get());
+  }
 
   const NodeState& topNode = im.statics.nodes.back();
   const TopMotion& tm = problem.dynamics.top_motion;

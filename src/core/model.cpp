@@ -446,8 +446,6 @@ std::string Problem::validate() const {
       break;
   }
   if (!(e = static_options.validate()).empty()) return e;
-  if (formulation == Formulation::ThreeD && dynamics.threads != 1)
-    return "dynamics.threads = " + std::to_string(dynamics.threads) + ": the 3-D model runs on one thread (must be 1)";
   return dynamics.validate();
 }
 

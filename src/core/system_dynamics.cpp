@@ -86,6 +86,9 @@ SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions
   if (!e.empty()) throw std::invalid_argument(e);
   const std::string eo = options.validate();
   if (!eo.empty()) throw std::invalid_argument(eo);
+  if (options.threads != 1)  // (a second thread per line would have them compete for the cores)
+    throw std::invalid_argument("dynamics.threads = " + std::to_string(options.threads) +
+                                ": the lines of a system run on one thread (must be 1)");
   im.system = system;
   im.system.formulation = Formulation::ThreeD;  // the lines run on the 3-D solver
   im.opt = options;

@@ -693,9 +693,6 @@ TEST(Dynamics2D, ThreadsMustBeOneOrTwo) {
   EXPECT_NE(p.validate().find("dynamics.threads = 3: must be 1 or 2"), std::string::npos) << p.validate();
   p.dynamics.threads = 2;
   EXPECT_EQ(p.validate(), "");
-  p.formulation = Formulation::ThreeD;
-  EXPECT_NE(p.validate().find("dynamics.threads = 2: the 3-D model runs on one thread"), std::string::npos)
-      << p.validate();
 }
 
 // Modified Newton (dynamics.jacobian_reuse) keeps the factorization from step to step of the

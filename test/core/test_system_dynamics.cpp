@@ -4,6 +4,8 @@
 // heaved by a vertical pull (it stays on the axis, the legs stay equal), and the input checks.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -90,6 +92,20 @@ SystemProblem threeLeg() {
   return s;
 }
 }  // namespace
+
+// A system's lines run on one thread: dynamics.threads = 2 is refused with the field named.
+TEST(SystemDynamics, RefusesTwoThreads) {
+  DynamicOptions o;
+  o.threads = 2;
+  try {
+    SystemDynamics sim(threeLeg(), o);
+    FAIL() << "threads = 2 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("dynamics.threads = 2: the lines of a system run on one thread"),
+              std::string::npos)
+        << e.what();
+  }
+}
 
 TEST(SystemDynamics, HeldThreeLegBuoyIsAFixedPoint) {
   DynamicOptions o;

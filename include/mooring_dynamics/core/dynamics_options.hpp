@@ -71,9 +71,10 @@ struct DynamicOptions {
   /// contact events make the Jacobian jump (it changed where the 2-D chain mooring cut steps).
   bool jacobian_reuse = false;
 
-  /// Threads of the 2-D dynamic solver, 1 or 2: with 2 a second thread assembles and
+  /// Threads of the 2-D and 3-D dynamic solvers, 1 or 2: with 2 a second thread assembles and
   /// eliminates the upper half of the line in every Newton iteration (the Newton matrix's
   /// two-ended elimination, BandedMatrix::factorize). The results are the same bit for bit.
+  /// Systems (SystemDynamics) refuse 2.
   int threads = 1;
 
   bool adaptive_mesh = false;    ///< section 3, eqs. 15-24

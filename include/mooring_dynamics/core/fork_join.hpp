@@ -82,5 +82,17 @@ void runBoth(ForkJoin* fork, A&& a, B&& b) {
   }
 }
 
+/// f(0, m) and f(m, end) by runBoth, or f(0, end) alone when m = 0: the two halves of a line's
+/// nodes or intervals, split where the Newton matrix's two-ended elimination meets
+/// (BandedMatrix::meetingNode), so that each thread works on the rows it eliminates.
+template <class F>
+void inHalves(ForkJoin* fork, int m, int end, const F& f) {
+  if (m == 0) {
+    f(0, end);
+    return;
+  }
+  runBoth(fork, [&] { f(0, m); }, [&] { f(m, end); });
+}
+
 }  // namespace core
 }  // namespace mooring_dynamics
