@@ -211,17 +211,24 @@ class DynamicStepSystem3D : public NewtonSystem {
     });
   }
 
+  /// The generalized-alpha weights of the step: alpha_m, alpha_k, and the rate's
+  /// Yd = c1 (Y - Yp) - c0 Ydp (eq. 26).
+  struct Weights {
+    double am, ak, c1, c0;
+  };
+  Weights weights() const {
+    const double g = im_.ga.gamma;
+    return {im_.ga.alpha_m, im_.ga.alpha_k, 1.0 / (g * dt_), (1.0 - g) / g};
+  }
+
   /// Every entry of a block-structured J is written or cleared (setZeroRows), half by half.
   bool writesEveryBlockEntry() const override { return true; }
 
   /// The lower end's rows (node 0).
   template <class S16>
   void endRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
-    const GeneralizedAlpha& ga = im_.ga;
-    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
-    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
-    const Eigen::VectorXd& Yp = im_.Y;
-    const Eigen::VectorXd& Ydp = im_.Yd;
+    const auto [am, ak, c1, c0] = weights();
+    const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
 
     // Anchor (eq. 34 in 3-D): at rest, fixed, bending-moment free, unit frame, twist held. A free
     // lower end (towing): the end body's force balance with its inertia, weighted in time like
@@ -276,12 +283,9 @@ class DynamicStepSystem3D : public NewtonSystem {
   /// The rows of intervals [j0, j1).
   template <class S32>
   void intervalRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1) const {
-    const GeneralizedAlpha& ga = im_.ga;
-    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
-    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
+    const auto [am, ak, c1, c0] = weights();
     const Environment& env = im_.problem.environment;
-    const Eigen::VectorXd& Yp = im_.Y;
-    const Eigen::VectorXd& Ydp = im_.Yd;
+    const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
     for (int j = j0; j < j1; ++j) {
       const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
       const int row = end_rows_ + N * j;
@@ -323,12 +327,9 @@ class DynamicStepSystem3D : public NewtonSystem {
   template <class S16>
   void topRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
     const int n = im_.nodes();
-    const GeneralizedAlpha& ga = im_.ga;
-    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
-    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
+    const auto [am, ak, c1, c0] = weights();
     const Environment& env = im_.problem.environment;
-    const Eigen::VectorXd& Yp = im_.Y;
-    const Eigen::VectorXd& Ydp = im_.Yd;
+    const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
     // Top: moment free, plus prescribed velocity (eq. 34), velocity with position feedback, or
     // force; a tow point (free lower end) also has its position prescribed.
     const int top = N * (n - 1);
