@@ -151,6 +151,16 @@ void twistedSolve(bool columns, int nodes, int meet, const BlockStorage& lower, 
   runBoth(fork, lowerBack, upperBack);
 }
 
+/// The factor storage of a block structure, from the vectors BandedMatrix keeps (the solve reads
+/// it through a const matrix; the kernels take it by pointer).
+template <class V>
+BlockStorage storageOf(const V& rows, const V& carried, const V& panels, const std::vector<double>& inv_diag,
+                       const std::vector<int>& perm) {
+  return BlockStorage{const_cast<double*>(rows.data()), const_cast<double*>(carried.data()),
+                      const_cast<double*>(panels.data()), const_cast<double*>(inv_diag.data()),
+                      const_cast<int*>(perm.data())};
+}
+
 template <int NB, int LEAD>
 int factorBlocks(bool columns, int n, int meet, const BlockStorage& s, const BlockStorage& mirror, ForkJoin* fork) {
   if (meet == 0) return blockFactor<NB, LEAD>(columns, n, s);
@@ -257,9 +267,8 @@ Eigen::VectorXd BandedMatrix::multiply(const Eigen::VectorXd& x) const {
 
 int BandedMatrix::factorize() {
   int info = 0;
-  const BlockStorage st{rows_.data(), carried_.data(), panels_.data(), inv_diag_.data(), perm_.data()};
-  const BlockStorage mirror{mirror_rows_.data(), mirror_carried_.data(), mirror_panels_.data(),
-                            mirror_inv_diag_.data(), mirror_perm_.data()};
+  const BlockStorage st = storageOf(rows_, carried_, panels_, inv_diag_, perm_);
+  const BlockStorage mirror = storageOf(mirror_rows_, mirror_carried_, mirror_panels_, mirror_inv_diag_, mirror_perm_);
   if (block_ == 8 && lead_ == 5)  // 2-D
     info = factorBlocks<8, 5>(columns_, n_, meet_, st, mirror, fork_);
   else if (block_ == 16 && lead_ == 10)  // 3-D, anchored
@@ -284,13 +293,8 @@ void BandedMatrix::solve(Eigen::VectorXd& b) const {
   if (!factorized_) throw std::logic_error("BandedMatrix::solve before a successful factorize()");
   if (b.size() != n_) throw std::invalid_argument("BandedMatrix::solve: right-hand side of wrong size");
   if (block_ > 0) {
-    // (solve is const; the storage is the factor's, read only, and the mirror's scratch.)
-    const BlockStorage st{const_cast<double*>(rows_.data()), const_cast<double*>(carried_.data()),
-                          const_cast<double*>(panels_.data()), const_cast<double*>(inv_diag_.data()),
-                          const_cast<int*>(perm_.data())};
-    const BlockStorage mirror{const_cast<double*>(mirror_rows_.data()), const_cast<double*>(mirror_carried_.data()),
-                              const_cast<double*>(mirror_panels_.data()),
-                              const_cast<double*>(mirror_inv_diag_.data()), const_cast<int*>(mirror_perm_.data())};
+    const BlockStorage st = storageOf(rows_, carried_, panels_, inv_diag_, perm_);
+    const BlockStorage mirror = storageOf(mirror_rows_, mirror_carried_, mirror_panels_, mirror_inv_diag_, mirror_perm_);
     if (block_ == 8 && lead_ == 5)
       solveBlocks<8, 5>(columns_, n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
     else if (block_ == 16 && lead_ == 10)

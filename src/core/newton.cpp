@@ -1,13 +1,13 @@
 #include "mooring_dynamics/core/newton.hpp"
 
-#include "mooring_dynamics/core/fork_join.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <sstream>
+
+#include "mooring_dynamics/core/fork_join.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -140,10 +140,9 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
     inParts(fork, split, n, [&](int first, int end, int part) {
       finite[part] = allFinite(dY, first, end);
       if (!finite[part]) return;
-      if (split) system.conditionStep(Y, dY, first, end);
-      else system.conditionStep(Y, dY);
+      system.conditionStep(Y, dY, first, end);  // (the whole vector when not split)
       sums[part] = scaledUpdateSum(inv_chi, dY, first, end);
-      limit[part] = split ? system.stepLimit(dY, first, end) : system.stepLimit(dY);
+      limit[part] = system.stepLimit(dY, first, end);
     });
     if (!(finite[0] && finite[1])) {
       if (!assembled) {  // a kept factorization gone bad: try a fresh one at this iterate
@@ -156,8 +155,9 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       return summary;
     }
     // Error measure and adaptive relaxation (eqs. 39-41).
-    const double sigma = (split ? sums[0].sum + sums[1].sum : sums[0].sum) / static_cast<double>(n);
-    worst = split && sums[1].largest > sums[0].largest ? sums[1].worst : sums[0].worst;
+    // (Without a split sums[1] is empty: sum 0, largest -1.)
+    const double sigma = (sums[0].sum + sums[1].sum) / static_cast<double>(n);
+    worst = sums[1].largest > sums[0].largest ? sums[1].worst : sums[0].worst;
     if (options.reuse_jacobian && !assembled && k > 0 && sigma > options.reuse_rate * sigma_prev) {
       // The kept Jacobian no longer contracts fast enough: assemble afresh and redo the update.
       // When it made the last update too and the iteration grew (a Jacobian kept from an

@@ -48,7 +48,8 @@ class NewtonSystem {
   /// A system whose blocks are nodes can have the vector work of an iteration split at the
   /// Newton matrix's meeting node (BandedMatrix::meetingNode; on its second thread when it has
   /// one): it then returns true and gives stepLimit and conditionStep on a range of whole nodes,
-  /// unknowns [first, end), with the whole-vector versions' values. Default: not split.
+  /// unknowns [first, end), with the whole-vector versions' values. solveNewton calls the range
+  /// versions, with [0, size()) when not split; by default they call the whole-vector ones.
   virtual bool splitsUpdate() const { return false; }
   virtual double stepLimit(const Eigen::VectorXd& dY, int first, int end) const {
     (void)first;
