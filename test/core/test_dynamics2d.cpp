@@ -652,41 +652,6 @@ TEST(Dynamics2D, StepJacobianMatchesFiniteDifferences) {
 
 // --- Two threads ---------------------------------------------------------------------------------
 
-// dynamics.threads = 2 splits every Newton iteration's assembly and elimination between two
-// threads (the two-ended elimination): the same operations, so the same series bit for bit. On
-// the shipped chain mooring (170 nodes, AxPack junctions, seabed contact and lift-off, cut steps)
-// and on a random sea (the S-tether: wave kinematics at every node, clump bodies).
-TEST(Dynamics2D, TwoThreadsGiveTheSameSeriesBitForBit) {
-  struct Case {
-    const char* file;
-    double duration;  // [s] enough for contact events / the sea to build up
-  };
-  for (const Case c : {Case{"config/chain_mooring.yaml", 24.0}, Case{"config/s_tether.yaml", 30.0}}) {
-    Problem p = loadProblemFromFile(std::string(MD_SOURCE_DIR) + "/" + c.file);
-    p.dynamics.duration = c.duration;
-    Problem p2 = p;
-    p2.dynamics.threads = 2;
-    const DynamicSeries one = runDynamic(p), two = runDynamic(p2);
-    ASSERT_TRUE(one.completed) << c.file << ": " << one.message;
-    ASSERT_TRUE(two.completed) << c.file << ": " << two.message;
-    EXPECT_EQ(two.steps, one.steps) << c.file;
-    EXPECT_EQ(two.cuts, one.cuts) << c.file;
-    EXPECT_EQ(two.newton_iterations, one.newton_iterations) << c.file;
-    ASSERT_EQ(two.t.size(), one.t.size()) << c.file;
-    for (std::size_t k = 0; k < one.t.size(); ++k) {
-      ASSERT_EQ(two.top_tension[k], one.top_tension[k]) << c.file << " t = " << one.t[k];
-      ASSERT_EQ(two.anchor_tension[k], one.anchor_tension[k]) << c.file << " t = " << one.t[k];
-      ASSERT_EQ(two.top_x[k], one.top_x[k]) << c.file << " t = " << one.t[k];
-      ASSERT_EQ(two.top_z[k], one.top_z[k]) << c.file << " t = " << one.t[k];
-    }
-    for (std::size_t i = 0; i < one.snapshots.size(); ++i)
-      for (std::size_t j = 0; j < one.snapshots[i].nodes.size(); ++j) {
-        ASSERT_EQ(two.snapshots[i].nodes[j].x, one.snapshots[i].nodes[j].x) << c.file;
-        ASSERT_EQ(two.snapshots[i].nodes[j].tension, one.snapshots[i].nodes[j].tension) << c.file;
-      }
-  }
-}
-
 TEST(Dynamics2D, ThreadsMustBeOneOrTwo) {
   Problem p = chainMooring(true);
   p.dynamics.threads = 3;

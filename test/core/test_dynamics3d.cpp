@@ -313,35 +313,3 @@ TEST(Dynamics3D, StepJacobianMatchesFiniteDifferences) {
   ASSERT_TRUE(solver.advanceTo(2.0).ok);
   EXPECT_LT(solver.jacobianFiniteDifferenceError(0.5), kJacobianTol);
 }
-
-// dynamics.threads = 2 in the 3-D model: the upper half of every Newton iteration (water,
-// interval rows, elimination, vector work) on a second thread, the same series bit for bit. On
-// the 3-D chain mooring (seabed contact, cuts, out-of-plane heave), the S-tether in 3-D (its
-// random sea) and the towed array (a free lower end, modified Newton: residual-only
-// evaluations).
-TEST(Dynamics3D, TwoThreadsGiveTheSameSeriesBitForBit) {
-  struct Case {
-    const char* file;
-    double duration;  // [s]
-    bool to_3d;       // a 2-D file run in the 3-D model
-  };
-  for (const Case c : {Case{"config/chain_mooring_3d.yaml", 20.0, false}, Case{"config/s_tether.yaml", 20.0, true},
-                       Case{"config/towed_array.yaml", 30.0, false}}) {
-    Problem p = loadProblemFromFile(std::string(MD_SOURCE_DIR) + "/" + c.file);
-    if (c.to_3d) p.formulation = Formulation::ThreeD;
-    p.dynamics.duration = c.duration;
-    Problem p2 = p;
-    p2.dynamics.threads = 2;
-    const DynamicSeries one = runDynamic3D(p), two = runDynamic3D(p2);
-    ASSERT_TRUE(one.completed) << c.file << ": " << one.message;
-    ASSERT_TRUE(two.completed) << c.file << ": " << two.message;
-    EXPECT_EQ(two.newton_iterations, one.newton_iterations) << c.file;
-    EXPECT_EQ(two.jacobians, one.jacobians) << c.file;
-    ASSERT_EQ(two.t.size(), one.t.size()) << c.file;
-    for (std::size_t k = 0; k < one.t.size(); ++k) {
-      ASSERT_EQ(two.top_tension[k], one.top_tension[k]) << c.file << " t = " << one.t[k];
-      ASSERT_EQ(two.anchor_tension[k], one.anchor_tension[k]) << c.file << " t = " << one.t[k];
-      ASSERT_EQ(two.top_y[k], one.top_y[k]) << c.file << " t = " << one.t[k];
-    }
-  }
-}
