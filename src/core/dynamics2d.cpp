@@ -112,8 +112,7 @@ struct DynamicSolver2D::Impl {
     c.resize(static_cast<std::size_t>(n));
     s.resize(static_cast<std::size_t>(n));
     for (int j = 0; j < n; ++j) {
-      c[static_cast<std::size_t>(j)] = std::cos(y[N * j + PHI]);
-      s[static_cast<std::size_t>(j)] = std::sin(y[N * j + PHI]);
+      sinCos(y[N * j + PHI], s[static_cast<std::size_t>(j)], c[static_cast<std::size_t>(j)]);
     }
     // Each node's load once for the intervals of one material it belongs to.
     double f1b = 0.0, f2b = 0.0;
@@ -232,8 +231,7 @@ class DynamicStepSystem : public NewtonSystem {
         water_[a] = im_.waterAt(j, Y[N * j + X], Y[N * j + Z]);
         for (int k = N * j; k < N * (j + 1); ++k)
           ydw_[k] = (1.0 - am) * (c1 * (Y[k] - Yp[k]) - c0 * Ydp[k]) + am * Ydp[k];
-        c_[a] = std::cos(Y[N * j + PHI]);
-        s_[a] = std::sin(Y[N * j + PHI]);
+        sinCos(Y[N * j + PHI], s_[a], c_[a]);
       }
     };
     im_.inHalves(m, n, nodeValues);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "mooring_dynamics/core/scalar.hpp"
 #include "mooring_dynamics/core/waves.hpp"
 
 namespace mooring_dynamics {
@@ -237,12 +238,7 @@ void WaveVelocityCache::setTime(double t) {
   ramp_ = field_->rampFactor(t);
   for (std::size_t i = 0; i < nc_; ++i) {
     const double a = phase_[i] - omega_[i] * t;
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_sincos(a, &sin_a_[i], &cos_a_[i]);  // one call for both (glibc: the same values)
-#else
-    cos_a_[i] = std::cos(a);
-    sin_a_[i] = std::sin(a);
-#endif
+    sinCos(a, sin_a_[i], cos_a_[i]);
   }
 }
 
@@ -290,8 +286,7 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
   const std::size_t n = (seen + kLanes - 1) / kLanes * kLanes;
   // Components [valid, n) have no reference values yet (or stale ones): compute them there.
   for (std::size_t i = valid_[p]; i < n; ++i) {
-    cb[i] = std::cos(kx_[i] * x_ref_[p]);
-    sb[i] = std::sin(kx_[i] * x_ref_[p]);
+    sinCos(kx_[i] * x_ref_[p], sb[i], cb[i]);
     ep[i] = std::exp(k_[i] * (z_ref_[p] + op_[i]));
     em[i] = std::exp(-k_[i] * (z_ref_[p] + om_[i]));
   }
