@@ -69,6 +69,7 @@ struct DynamicOptions {
   /// same size while each update shrinks fast enough (NewtonOptions::reuse_rate). Same
   /// tolerance, fewer assemblies; off by default, worth it on smooth problems (a tow), not where
   /// contact events make the Jacobian jump (it changed where the 2-D chain mooring cut steps).
+  /// The step predictor then extrapolates the rate's change too (docs/method.md).
   bool jacobian_reuse = false;
 
   /// Threads of the 2-D and 3-D dynamic solvers, 1 or 2: with 2 a second thread assembles and
