@@ -87,8 +87,12 @@ struct ColumnLU {
   /// Eliminates the NB columns of a panel: count interval rows (slots 0 ..) and the LEAD carried
   /// ones, on COLS columns. For an inner panel (COLS = W) the leftover rows' node j + 1 part goes
   /// into the carried slots of next. Returns 0, or the 1-based column of the first exactly zero
-  /// pivot.
-  template <int COLS>
+  /// pivot. With GUESS the pivot slots are taken from perm as the last factorization left it
+  /// (its pivot slot of step K at position K), so that the pivot's reciprocal does not wait for
+  /// the search; the search still runs beside the chain and checks every guess, and from the
+  /// first wrong one on the panel continues with the search (see step). A right guess is the
+  /// search's choice, so the factor is the same bit for bit either way.
+  template <int COLS, bool GUESS>
   static MD_INLINE int panel(double* P, int count, double* rd, int* perm, double* next) {
     constexpr int ROWS = COLS == W ? M : NB;
     Slots active = ((Slots{1} << count) - 1) | (((Slots{1} << LEAD) - 1) << NB);
@@ -98,13 +102,25 @@ struct ColumnLU {
       at[i] = i < LEAD ? NB + i : i < ROWS ? i - LEAD : LANES - 1;
       pos[i] = i < NB ? LEAD + i : i - NB;
     }
+    int guess[NB] = {};
+    if constexpr (GUESS)
+      for (int k = 0; k < NB; ++k) guess[k] = perm[k] & (LANES - 1);  // (in range whatever perm holds)
     __m512d cand[G], none[G] = {};
     for (int g = 0; g < G; ++g) cand[g] = _mm512_loadu_pd(column(P, 0) + 8 * g);
     int info = 0;
-    step<COLS, 0>(P, rd, next, active, at, pos, cand, none, 0, 0, info);
+    step<COLS, 0, GUESS>(P, rd, next, active, at, pos, cand, none, 0, 0, info, guess);
     if (info != 0) return info;
     for (int r = 0; r < ROWS; ++r) perm[r] = static_cast<int>(at[r]);
     return 0;
+  }
+
+  /// Lane q of the G vectors v (q < LANES).
+  static MD_INLINE double lane(const __m512d* v, int q) {
+    const __m512i iq = _mm512_set1_epi64(q);
+    const __m512d lo = _mm512_permutex2var_pd(v[0], iq, v[G > 1 ? 1 : 0]);  // lanes 0 .. 15
+    if constexpr (G <= 2) return _mm512_cvtsd_f64(lo);
+    const __m512d hi = _mm512_permutex2var_pd(v[2], iq, v[G > 3 ? 3 : 2]);  // lanes 16 .. 31
+    return _mm512_cvtsd_f64(_mm512_mask_blend_pd(static_cast<__mmask8>(q >= 16 ? 0xff : 0), lo, hi));
   }
 
   /// Column c of P minus l u (u: the pivot row's entry, in slot q) in the rows of upd, to out.
@@ -121,10 +137,19 @@ struct ColumnLU {
 
   /// Step K. cand: column K; (lp, qp, up): the previous step's multipliers, pivot slot and rows,
   /// for the part of its update deferred to here.
-  template <int COLS, int K>
+  template <int COLS, int K, bool GUESS>
   static MD_INLINE void step(double* P, double* rd, double* next, Slots& active, std::int64_t* at, int* pos,
-                             const __m512d* cand, const __m512d* lp, int qp, Slots up, int& info) {
+                             const __m512d* cand, const __m512d* lp, int qp, Slots up, int& info,
+                             const int* guess) {
     if constexpr (K < NB) {
+      // With a guess, 1 / pivot from the guessed slot right away (1 / p is the search path's
+      // 1 / |p| with p's sign: IEEE division rounds the magnitude alike).
+      int qg = 0;
+      __m512d rg = _mm512_setzero_pd();
+      if constexpr (GUESS) {
+        qg = guess[K];
+        rg = _mm512_set1_pd(1.0 / lane(cand, qg));
+      }
       // The largest magnitude of the active rows (the bits of |x|, integers that order as the
       // values), in every lane; 1 / |pivot| from it.
       const __m512i abs_bits = _mm512_set1_epi64(INT64_MAX);
@@ -136,16 +161,17 @@ struct ColumnLU {
       best = _mm512_max_epi64(best, _mm512_shuffle_i64x2(best, best, 0x4e));
       best = _mm512_max_epi64(best, _mm512_shuffle_i64x2(best, best, 0xb1));
       best = _mm512_max_epi64(best, _mm512_permutex_epi64(best, 0xb1));
-      if (_mm_cvtsi128_si64(_mm512_castsi512_si128(best)) == 0) {  // every candidate exactly zero
+      const bool zero = _mm_cvtsi128_si64(_mm512_castsi512_si128(best)) == 0;  // every candidate exactly zero
+      if (!GUESS && zero) {
         info = K + 1;
         return;
       }
-      const double rcp_abs = 1.0 / _mm_cvtsd_f64(_mm512_castpd512_pd128(_mm512_castsi512_pd(best)));
       // The rows holding it, and the negative candidates, one bit per slot.
       Slots tied = 0, negative = 0;
       for (int g = 0; g < G; ++g) {
         tied |= Slots{_mm512_cmpeq_epi64_mask(mag[g], best)} << (8 * g);
-        negative |= Slots{_mm512_cmplt_epi64_mask(_mm512_castpd_si512(cand[g]), _mm512_setzero_si512())} << (8 * g);
+        if constexpr (!GUESS)
+          negative |= Slots{_mm512_cmplt_epi64_mask(_mm512_castpd_si512(cand[g]), _mm512_setzero_si512())} << (8 * g);
       }
       int q = __builtin_ctz(tied);
       if (__builtin_expect((tied & (tied - 1)) != 0, 0))  // a tie: the first in position order
@@ -153,10 +179,25 @@ struct ColumnLU {
           const int s = __builtin_ctz(t);
           if (pos[s] < pos[q]) q = s;
         }
-      // 1 / pivot, broadcast: the sign bit of a negative pivot set by an exclusive or (exact:
-      // rounding is symmetric), not a branch on the sign.
-      const __m512d r = _mm512_castsi512_pd(_mm512_xor_si512(
-          _mm512_castpd_si512(_mm512_set1_pd(rcp_abs)), _mm512_set1_epi64(static_cast<long long>((negative >> q) & 1) << 63)));
+      // With a guess, the search's choice must be the guess (an active slot, nonzero). A
+      // branch, not a data dependency: the processor runs on with the guess while the search
+      // completes, and a miss (its branch mispredicted) does this step and the rest of the
+      // panel with the search instead, from the same state (nothing of step K is written yet).
+      __m512d r;
+      if constexpr (GUESS) {
+        if (__builtin_expect(zero || q != qg, 0)) {
+          step<COLS, K, false>(P, rd, next, active, at, pos, cand, lp, qp, up, info, guess);
+          return;
+        }
+        q = qg;
+        r = rg;
+      } else {
+        const double rcp_abs = 1.0 / _mm_cvtsd_f64(_mm512_castpd512_pd128(_mm512_castsi512_pd(best)));
+        // 1 / pivot, broadcast: the sign bit of a negative pivot set by an exclusive or (exact:
+        // rounding is symmetric), not a branch on the sign.
+        r = _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(_mm512_set1_pd(rcp_abs)),
+                                                 _mm512_set1_epi64(static_cast<long long>((negative >> q) & 1) << 63)));
+      }
       _mm_store_sd(rd + K, _mm512_castpd512_pd128(r));
       // Interchange positions K and pos[q]: the slot at K takes q's position.
       const int p = pos[q], t = static_cast<int>(at[K]);
@@ -183,7 +224,7 @@ struct ColumnLU {
       if constexpr (K + 1 < NB) {
         update(P, K + 1, q, active, l, nullptr, nextCand);
         if constexpr (K + 2 < COLS) update(P, K + 2, q, active, l, column(P, K + 2), nullptr);
-        step<COLS, K + 1>(P, rd, next, active, at, pos, nextCand, l, q, active, info);
+        step<COLS, K + 1, GUESS>(P, rd, next, active, at, pos, nextCand, l, q, active, info, guess);
       } else if constexpr (COLS == W) {
 #pragma GCC unroll 1
         for (int c = NB; c < W; ++c) update(P, c, q, active, l, column(next, c - NB), nullptr);
@@ -236,11 +277,14 @@ int factor(int n, const RowSource& in, double* panels, double* inv_diag, int* pe
         B::column(P, c)[q] = in.own[static_cast<std::size_t>(q) * W + static_cast<std::size_t>(c)];
   };
   const int j = nodes - 1;
-  if (part != Panels::kLast) {
-    // Panel 0's carried slots: the anchor rows, on node 0.
+  // Panel 0's carried slots: the anchor rows, on node 0.
+  auto loadLead = [&](double* P) {
     for (int c = 0; c < W; ++c)
       for (int r = 0; r < LEAD; ++r)
-        B::column(panel(0), c)[NB + r] = c < NB ? in.lead[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c)] : 0.0;
+        B::column(P, c)[NB + r] = c < NB ? in.lead[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c)] : 0.0;
+  };
+  if (part != Panels::kLast) {
+    loadLead(panel(0));
     if (nodes > 1) B::loadInterval(panel(0), in, 0);
     else loadTop(panel(0));
     alignas(64) double staged[NB * LANES];  // the leftover rows' node j + 1 part, by slot
@@ -249,14 +293,19 @@ int factor(int n, const RowSource& in, double* panels, double* inv_diag, int* pe
       double* const Q = panel(i + 1);
       if (i + 2 < nodes) B::loadInterval(Q, in, i + 1);
       else if (part == Panels::kAll) loadTop(Q);
-      if (const int k = B::template panel<W>(P, NB, inv_diag + NB * i, perm + M * i, staged)) return NB * i + k;
+      // The pivots of the last factorization as guesses (ColumnLU::panel). Only for 8 unknowns
+      // per node: with 16 the search is hidden behind the longer row updates already, and the
+      // check's extra work made the 3-D factorization slower (bench_banded BM_BlockFactor16:
+      // 240-280 us -> 290-390 us, against 40 -> 33 us for BM_BlockFactor8).
+      const int k = B::template panel<W, NB == 8>(P, NB, inv_diag + NB * i, perm + M * i, staged);
+      if (k != 0) return NB * i + k;
       B::carry(staged, perm + M * i + NB, Q);
     }
     if (part == Panels::kInner) return 0;
   } else {
     loadTop(panel(j));
   }
-  if (const int k = B::template panel<NB>(panel(j), NB - LEAD, inv_diag + NB * j, perm + M * j, nullptr))
+  if (const int k = B::template panel<NB, false>(panel(j), NB - LEAD, inv_diag + NB * j, perm + M * j, nullptr))
     return NB * j + k;
   return 0;
 }

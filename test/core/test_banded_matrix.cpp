@@ -387,3 +387,52 @@ TEST(BandedMatrix, ParallelSweepsSolveBitForBitAsOneThread) {
       }
     }
 }
+
+// The AVX-512 kernel of the 8-unknown structures takes the pivots of the last factorization as
+// guesses and checks each against the search (block_lu_avx512.hpp, ColumnLU::panel). Newton
+// reassembles a matrix that changed a little: most pivots stay, some move. Such a sequence must
+// give the factor of a fresh matrix (no guesses) bit for bit: nearby matrices (every guess
+// right, or a few wrong), rows swapped in magnitude (guesses wrong at any step), and integer
+// entries (exact ties, broken by position).
+TEST(BandedMatrix, KeptPivotGuessesGiveTheSearchsFactorBitForBit) {
+  std::mt19937 rng(53);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> small(-2, 2);
+  std::bernoulli_distribution rare(0.02);
+  for (int nodes : {4, 25, 60}) {
+    const int block = 8, lead = 5, n = block * nodes, kl = lead + block - 1, ku = 2 * block - 1 - lead;
+    BandedMatrix A(n, kl, ku);
+    A.setBlockStructure(block, lead);
+    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        if (A.inBand(i, j) && A.inPattern(i, j)) D(i, j) = u(rng);
+    for (int round = 0; round < 8; ++round) {
+      if (round > 0 && round < 4) {  // nearby: relative changes of 1e-3, a few entries scaled up
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j)
+            if (D(i, j) != 0.0) D(i, j) *= rare(rng) ? 10.0 : 1.0 + 1e-3 * u(rng);
+      } else if (round >= 4 && round < 6) {  // two rows of one interval trade magnitudes
+        const int i = lead + block * static_cast<int>(rng() % static_cast<unsigned>(nodes - 1));
+        D.row(i).swap(D.row(i + 1 + static_cast<int>(rng() % 7)));
+      } else if (round >= 6) {  // integers: exact ties
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j)
+            if (D(i, j) != 0.0) D(i, j) = small(rng) == 0 ? 1.0 : small(rng);
+      }
+      BandedMatrix fresh(n, kl, ku);
+      fresh.setBlockStructure(block, lead);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          if (A.inBand(i, j) && A.inPattern(i, j)) A.at(i, j) = fresh.at(i, j) = D(i, j);
+      const int info = A.factorize();
+      ASSERT_EQ(info, fresh.factorize()) << "nodes " << nodes << " round " << round;
+      if (info != 0) continue;
+      const Eigen::VectorXd b = randomVector(n, rng);
+      Eigen::VectorXd x = b, y = b;
+      A.solve(x);
+      fresh.solve(y);
+      for (int i = 0; i < n; ++i) ASSERT_EQ(x[i], y[i]) << "nodes " << nodes << " round " << round << " row " << i;
+    }
+  }
+}
