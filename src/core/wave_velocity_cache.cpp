@@ -242,6 +242,21 @@ void WaveVelocityCache::setTime(double t) {
   }
 }
 
+std::size_t WaveVelocityCache::seenAt(double zc) const {
+  // The components this elevation sees (a prefix: sorted by z_skip), whole lanes of them (the
+  // extra ones, below their skip depth, add less than 1e-12 m/s each).
+  const std::size_t seen =
+      static_cast<std::size_t>(std::upper_bound(z_skip_.begin(), z_skip_.begin() + static_cast<std::ptrdiff_t>(nc_), zc) -
+                               z_skip_.begin());
+  return (seen + kLanes - 1) / kLanes * kLanes;
+}
+
+std::size_t WaveVelocityCache::componentsAt(double z) const {
+  if (empty()) return 0;
+  const double zc = std::min(0.0, std::max(-field_->depth_, z));
+  return zc < field_->z_all_negligible_ ? 0 : seenAt(zc);
+}
+
 void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, double& vz) {
   vx = vz = 0.0;
   if (empty()) return;
@@ -278,12 +293,7 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
     valid_[p] = 0;
     moves_[p] = 0;
   }
-  // The components this elevation sees (a prefix: sorted by z_skip), whole lanes of them (the
-  // extra ones, below their skip depth, add less than 1e-12 m/s each).
-  const std::size_t seen =
-      static_cast<std::size_t>(std::upper_bound(z_skip_.begin(), z_skip_.begin() + static_cast<std::ptrdiff_t>(nc_), zc) -
-                               z_skip_.begin());
-  const std::size_t n = (seen + kLanes - 1) / kLanes * kLanes;
+  const std::size_t n = seenAt(zc);
   // Components [valid, n) have no reference values yet (or stale ones): compute them there.
   for (std::size_t i = valid_[p]; i < n; ++i) {
     sinCos(kx_[i] * x_ref_[p], sb[i], cb[i]);

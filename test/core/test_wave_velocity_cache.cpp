@@ -231,3 +231,29 @@ TEST(Waves, VelocityCacheInTheHorizontalPlaneMatchesDirectEvaluation) {
     }
   EXPECT_EQ(compared, 480);
 }
+
+// componentsAt(z), the cost of an exact evaluation that the dynamic solver shares between its
+// threads by: every component at the surface (and above it: the surface values), whole groups
+// of eight, fewer with depth (the short waves die out first), none where every component is
+// below the negligible velocity (1e-12 m/s), and none without a sea.
+TEST(Waves, VelocityCacheComponentsSummedFallWithDepth) {
+  WaveSpec s = storm(0.0);
+  s.components = 100;
+  const WaveField field(s, 1860.0, kG);
+  const WaveVelocityCache cache(&field, 1);
+  EXPECT_EQ(cache.componentsAt(0.0), 104u);  // 100 rounded up to whole groups of eight
+  EXPECT_EQ(cache.componentsAt(5.0), 104u);
+  std::size_t above = cache.componentsAt(0.0);
+  for (double z = -10.0; z >= -1860.0; z -= 10.0) {
+    const std::size_t n = cache.componentsAt(z);
+    EXPECT_EQ(n % 8, 0u) << "z " << z;
+    EXPECT_LE(n, above) << "z " << z;
+    above = n;
+  }
+  EXPECT_LT(cache.componentsAt(-300.0), cache.componentsAt(-30.0));  // short waves gone at 300 m
+  // The longest component (f_min_factor 0.5 of fp: k = 0.004 1/m) is still felt at the bottom of
+  // 1860 m (e^{-k 1860} ~ 7e-4 times its velocity at the surface), so the bottom still sums a group.
+  EXPECT_GT(cache.componentsAt(-1860.0), 0u);
+  const WaveVelocityCache none(nullptr, 1);
+  EXPECT_EQ(none.componentsAt(-10.0), 0u);
+}

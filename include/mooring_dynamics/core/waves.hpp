@@ -114,6 +114,9 @@ class WaveVelocityCache {
   /// phases depend on x, y through xi = x cos(theta) + y sin(theta) only, so this is velocity()
   /// at xi with the horizontal velocity split along theta.
   void velocity3(std::size_t i, double x, double y, double z, double& vx, double& vy, double& vz);
+  /// The number of components an exact evaluation at elevation z sums (whole lane groups; 0 where
+  /// every component is negligible): its cost, for sharing the points between threads.
+  std::size_t componentsAt(double z) const;
 
   /// Largest phase difference or exponent carried by the Taylor series [rad]: the terms left
   /// out (beyond u^11) are below 0.2^12 / 12! ~ 9e-18.
@@ -134,6 +137,7 @@ class WaveVelocityCache {
   double linearRadius() const { return lin_radius_; }
 
  private:
+  std::size_t seenAt(double zc) const;  ///< components summed at a clamped, relevant elevation
   const WaveField* field_ = nullptr;
   bool plane_ = false;                  ///< points anywhere: tables along the direction of travel
   double direction_ = 0.0, cos_dir_ = 1.0, sin_dir_ = 0.0;  ///< that direction theta [rad]
