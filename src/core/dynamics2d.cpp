@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -74,44 +73,11 @@ struct DynamicSolver2D::Impl {
   void inHalves(int m, int end, const F& f) const {
     core::inHalves(fork.get(), m, end, f);
   }
-  /// Where the water velocities split between the threads (see waterSplit).
+  /// Where the water velocities split between the threads (set from the static shape,
+  /// balancedWaterSplit; fixed for the run, so that each node's wave references stay with one
+  /// thread; the water of the nodes between it and the meeting node crosses to the other
+  /// thread, 32 bytes a node).
   int water_split = 0;
-
-  /// The node from which the upper half's thread takes the water velocities: the meeting node
-  /// without waves; with waves, where the wave sums of the static shape (components summed per
-  /// node, plus a node's own work in the same units) split in two equal parts. The nodes near the
-  /// surface sum all the components and the deep ones only the long waves, so the upper half of
-  /// a deep line would otherwise do most of the sums (A.2 at 0.1 s, timed on one thread: 0.71 s
-  /// of water in the upper half against 0.34 s in the lower; split at 199 of 274 nodes, 0.54 and
-  /// 0.53 s).
-  /// Fixed for the run, so that each node's wave references stay with one thread; the water of
-  /// the nodes between the two splits crosses to the other thread (32 bytes a node).
-  int waterSplit() const {
-    const int n = nodes(), m = BandedMatrix::meetingNode(n);
-    if (m == 0 || wave_cache.empty()) return m;
-    // In the units of one component's sum (measured on A.2, one thread): a node's water without
-    // the sum (three look-ups in the current table, the cache's bookkeeping), and its rates and
-    // angles (which stay split at m).
-    constexpr double kWaterWork = 40.0, kRestWork = 8.0;
-    std::vector<double> upto(static_cast<std::size_t>(n) + 1, 0.0);  // water work of nodes [0, j)
-    for (int j = 0; j < n; ++j) {
-      const double waves = static_cast<double>(wave_cache.componentsAt(Y[N * j + Z]));
-      upto[static_cast<std::size_t>(j) + 1] = upto[static_cast<std::size_t>(j)] + waves + kWaterWork;
-    }
-    // Lower thread: water of [0, w), the rest of [0, m); upper: water of [w, n), the rest of [m, n).
-    const double total = upto[static_cast<std::size_t>(n)];
-    int best = m;
-    double best_gap = std::numeric_limits<double>::infinity();
-    for (int w = 1; w < n; ++w) {
-      const double lower = upto[static_cast<std::size_t>(w)] + kRestWork * m;
-      const double upper = total - upto[static_cast<std::size_t>(w)] + kRestWork * (n - m);
-      if (std::abs(lower - upper) < best_gap) {
-        best_gap = std::abs(lower - upper);
-        best = w;
-      }
-    }
-    return best;
-  }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 
   /// Water at node j, at (x, z) and the time last given to wave_cache.setTime.
@@ -265,7 +231,7 @@ class DynamicStepSystem : public NewtonSystem {
     ydw_.resize(Y.size());
     c_.resize(static_cast<std::size_t>(n));
     s_.resize(static_cast<std::size_t>(n));
-    // Water at every node (split at im_.water_split, Impl::waterSplit), weighted rates (eq. 30)
+    // Water at every node (split at im_.water_split), weighted rates (eq. 30)
     // and cos, sin of the inclination (split at m).
     auto waterValues = [&](int j0, int j1) {
       for (int j = j0; j < j1; ++j) water_[static_cast<std::size_t>(j)] = im_.waterAt(j, Y[N * j + X], Y[N * j + Z]);
@@ -529,7 +495,17 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   im.Yd = Eigen::VectorXd::Zero(im.Y.size());
   im.waterField(im.Y, 0.0, im.water);
   im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
-  im.water_split = im.waterSplit();
+  {
+    // In the units of one component's sum (measured on A.2, one thread): a node's water without
+    // the sum (three look-ups in the current table, the cache's bookkeeping), and its rates and
+    // angles, which stay split at the meeting node. A.2 at 0.1 s, timed on one thread: the water
+    // phase took 0.71 s in the upper half against 0.34 s in the lower; split at node 198 of
+    // 274 instead of 137, 0.54 and 0.53 s.
+    constexpr double kWaterWork = 40.0, kRestWork = 8.0;
+    std::vector<double> z(static_cast<std::size_t>(im.nodes()));
+    for (int j = 0; j < im.nodes(); ++j) z[static_cast<std::size_t>(j)] = im.Y[N * j + Z];
+    im.water_split = balancedWaterSplit(im.wave_cache, z, BandedMatrix::meetingNode(im.nodes()), kWaterWork, kRestWork);
+  }
 
   // Error scales chi_m of eq. 39.
   double Tc = 1.0, stiffest = 0.0;

@@ -340,5 +340,26 @@ void WaveVelocityCache::velocity3(std::size_t p, double x, double y, double z, d
   vy = vh * sin_dir_;
 }
 
+int balancedWaterSplit(const WaveVelocityCache& cache, const std::vector<double>& z, int meeting, double water_work,
+                       double rest_work) {
+  const int n = static_cast<int>(z.size());
+  if (meeting == 0 || cache.empty()) return meeting;
+  std::vector<double> upto(z.size() + 1, 0.0);  // water work of points [0, j)
+  for (std::size_t j = 0; j < z.size(); ++j)
+    upto[j + 1] = upto[j] + static_cast<double>(cache.componentsAt(z[j])) + water_work;
+  const double total = upto.back();
+  int best = meeting;
+  double best_gap = std::numeric_limits<double>::infinity();
+  for (int w = 1; w < n; ++w) {
+    const double first = upto[static_cast<std::size_t>(w)] + rest_work * meeting;
+    const double second = total - upto[static_cast<std::size_t>(w)] + rest_work * (n - meeting);
+    if (std::abs(first - second) < best_gap) {
+      best_gap = std::abs(first - second);
+      best = w;
+    }
+  }
+  return best;
+}
+
 }  // namespace core
 }  // namespace mooring_dynamics

@@ -257,3 +257,29 @@ TEST(Waves, VelocityCacheComponentsSummedFallWithDepth) {
   const WaveVelocityCache none(nullptr, 1);
   EXPECT_EQ(none.componentsAt(-10.0), 0u);
 }
+
+// balancedWaterSplit: equal work per point splits at the meeting node; a line rising from the
+// bottom to the surface (top last) gives the second thread fewer points, the ones that sum all
+// the components, and the two parts' work then differs by less than one point's; no sea: the
+// meeting node.
+TEST(Waves, BalancedWaterSplitEvensTheWaveSums) {
+  const WaveField field(storm(0.0), 1860.0, kG);
+  const WaveVelocityCache cache(&field, 1);
+  constexpr int kPoints = 200, kMeeting = 100;
+  constexpr double kWaterWork = 40.0, kRestWork = 8.0;
+  const std::vector<double> level(kPoints, -10.0);
+  EXPECT_EQ(balancedWaterSplit(cache, level, kMeeting, kWaterWork, kRestWork), kMeeting);
+  std::vector<double> rising(kPoints);
+  for (int j = 0; j < kPoints; ++j) rising[static_cast<std::size_t>(j)] = -1860.0 * (1.0 - j / (kPoints - 1.0));
+  const int w = balancedWaterSplit(cache, rising, kMeeting, kWaterWork, kRestWork);
+  EXPECT_GT(w, kMeeting + 20);
+  double first = kRestWork * kMeeting, second = kRestWork * (kPoints - kMeeting), largest = 0.0;
+  for (int j = 0; j < kPoints; ++j) {
+    const double work = static_cast<double>(cache.componentsAt(rising[static_cast<std::size_t>(j)])) + kWaterWork;
+    (j < w ? first : second) += work;
+    largest = std::max(largest, work);
+  }
+  EXPECT_LE(std::abs(first - second), largest);
+  const WaveVelocityCache none(nullptr, 1);
+  EXPECT_EQ(balancedWaterSplit(none, rising, kMeeting, kWaterWork, kRestWork), kMeeting);
+}

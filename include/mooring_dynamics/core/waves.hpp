@@ -183,5 +183,15 @@ double waveNumber(double omega, double depth, double gravity);
 double piersonMoskowitzSpectrum(double f, double hs, double tp);
 double jonswapSpectrum(double f, double hs, double tp, double gamma);
 
+/// Where two threads should split the water velocities of points 0 .. n - 1 at elevations z
+/// (a line's nodes, top last) so that their work is equal: the first thread takes points [0, w)
+/// and `rest_work` per point of [0, meeting) besides, the second [w, n) and the rest of
+/// [meeting, n). A point's water costs `water_work` plus the components it sums
+/// (componentsAt), in the units of one component's sum. Without a sea: meeting. The nodes near
+/// the surface sum all the components and the deep ones only the long waves, so the upper half
+/// of a deep line would otherwise do most of the sums.
+int balancedWaterSplit(const WaveVelocityCache& cache, const std::vector<double>& z, int meeting, double water_work,
+                       double rest_work);
+
 }  // namespace core
 }  // namespace mooring_dynamics
