@@ -33,6 +33,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mooring_dynamics/core/scalar.hpp"
+
 namespace mooring_dynamics {
 namespace core {
 
@@ -298,15 +300,19 @@ double rampRate(double ramp, double t) {
   return 0.5 * kPi / ramp * std::sin(kPi * t / ramp);
 }
 
-double phaseOf(const WaveComponent& c, double x, double y, double t) {
-  return c.k * (x * std::cos(c.direction) + y * std::sin(c.direction)) - c.omega * t + c.phase;
+/// Phase of component c at (x, y, t); cd, sd: cos and sin of its direction (Kinematics).
+double phaseOf(const WaveComponent& c, double cd, double sd, double x, double y, double t) {
+  return c.k * (x * cd + y * sd) - c.omega * t + c.phase;
 }
 }  // namespace
 
 double WaveField::elevation(double x, double y, double t) const {
   if (components_.empty()) return 0.0;
   double eta = 0.0;
-  for (const auto& c : components_) eta += c.amplitude * std::cos(phaseOf(c, x, y, t));
+  for (std::size_t i = 0; i < components_.size(); ++i) {
+    const WaveComponent& c = components_[i];
+    eta += c.amplitude * std::cos(phaseOf(c, kin_[i].cd, kin_[i].sd, x, y, t));
+  }
   return rampFactor(t) * eta;
 }
 
@@ -315,10 +321,13 @@ double WaveField::elevationRate(double x, double y, double t) const {
   const double r = rampFactor(t);
   const double dr = rampRate(ramp_, t);
   double eta = 0.0, rate = 0.0;
-  for (const auto& c : components_) {
-    const double th = phaseOf(c, x, y, t);
-    rate += c.amplitude * c.omega * std::sin(th);
-    if (dr != 0.0) eta += c.amplitude * std::cos(th);
+  for (std::size_t i = 0; i < components_.size(); ++i) {
+    const WaveComponent& c = components_[i];
+    const double th = phaseOf(c, kin_[i].cd, kin_[i].sd, x, y, t);
+    double sth, cth;
+    sinCos(th, sth, cth);
+    rate += c.amplitude * c.omega * sth;
+    if (dr != 0.0) eta += c.amplitude * cth;
   }
   return r * rate + dr * eta;
 }
@@ -354,11 +363,12 @@ void WaveField::velocity(double x, double y, double z, double t, double& vx, dou
     } else {
       depthFactors(c.k, zc, depth_, ch, sh);
     }
-    const double th = c.k * (x * q.cd + y * q.sd) - c.omega * t + c.phase;
-    const double uh = q.aw * ch * std::cos(th);
+    double sth, cth;
+    sinCos(phaseOf(c, q.cd, q.sd, x, y, t), sth, cth);
+    const double uh = q.aw * ch * cth;
     vx += uh * q.cd;
     vy += uh * q.sd;
-    vz += q.aw * sh * std::sin(th);
+    vz += q.aw * sh * sth;
   }
   const double r = rampFactor(t);
   vx *= r;
@@ -373,13 +383,14 @@ void WaveField::acceleration(double x, double y, double z, double t, double& ax,
   const double r = rampFactor(t);
   const double dr = rampRate(ramp_, t);
   double vx = 0.0, vy = 0.0, vz = 0.0;  // un-ramped velocity, for the dR/dt term
-  for (const auto& c : components_) {
+  for (std::size_t i = 0; i < components_.size(); ++i) {
+    const WaveComponent& c = components_[i];
     double ch, sh;
     depthFactors(c.k, zc, depth_, ch, sh);
-    const double th = phaseOf(c, x, y, t);
-    const double cth = std::cos(th), sth = std::sin(th);
+    const double cd = kin_[i].cd, sd = kin_[i].sd;
+    double sth, cth;
+    sinCos(phaseOf(c, cd, sd, x, y, t), sth, cth);
     const double aw = c.amplitude * c.omega;
-    const double cd = std::cos(c.direction), sd = std::sin(c.direction);
     const double ah = aw * c.omega * ch * sth;  // d/dt of a w ch cos(th), th = ... - w t
     ax += ah * cd;
     ay += ah * sd;
