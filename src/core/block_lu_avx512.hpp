@@ -89,9 +89,9 @@ struct ColumnLU {
   /// into the carried slots of next. Returns 0, or the 1-based column of the first exactly zero
   /// pivot. With GUESS the pivot slots are taken from perm as the last factorization left it
   /// (its pivot slot of step K at position K), so that the pivot's reciprocal does not wait for
-  /// the search; the search still runs beside the chain and checks every guess, and from the
-  /// first wrong one on the panel continues with the search (see step). A right guess is the
-  /// search's choice, so the factor is the same bit for bit either way.
+  /// the search; the search still runs beside the chain and checks every guess, and a wrong
+  /// one is replaced by the search's choice (see step). A right guess is the search's choice,
+  /// so the factor is the same bit for bit either way.
   template <int COLS, bool GUESS>
   static MD_INLINE int panel(double* P, int count, double* rd, int* perm, double* next) {
     constexpr int ROWS = COLS == W ? M : NB;
@@ -112,6 +112,13 @@ struct ColumnLU {
     if (info != 0) return info;
     for (int r = 0; r < ROWS; ++r) perm[r] = static_cast<int>(at[r]);
     return 0;
+  }
+
+  /// 1 / pivot, broadcast, for a missed guess: out of line (cold), so that the compiler keeps
+  /// the branch instead of selecting between the guess and the search, which would make the
+  /// chain wait for the search again.
+  __attribute__((noinline, cold)) static __m512d missedPivot(const __m512d* cand, int q) {
+    return _mm512_set1_pd(1.0 / lane(cand, q));
   }
 
   /// Lane q of the G vectors v (q < LANES).
@@ -181,16 +188,20 @@ struct ColumnLU {
         }
       // With a guess, the search's choice must be the guess (an active slot, nonzero). A
       // branch, not a data dependency: the processor runs on with the guess while the search
-      // completes, and a miss (its branch mispredicted) does this step and the rest of the
-      // panel with the search instead, from the same state (nothing of step K is written yet).
+      // completes; a miss (its branch mispredicted) takes this step's pivot from the search, and
+      // the next steps again from their guesses.
       __m512d r;
       if constexpr (GUESS) {
         if (__builtin_expect(zero || q != qg, 0)) {
-          step<COLS, K, false>(P, rd, next, active, at, pos, cand, lp, qp, up, info, guess);
-          return;
+          if (zero) {
+            info = K + 1;
+            return;
+          }
+          r = missedPivot(cand, q);
+        } else {
+          q = qg;
+          r = rg;
         }
-        q = qg;
-        r = rg;
       } else {
         const double rcp_abs = 1.0 / _mm_cvtsd_f64(_mm512_castpd512_pd128(_mm512_castsi512_pd(best)));
         // 1 / pivot, broadcast: the sign bit of a negative pivot set by an exclusive or (exact:
