@@ -19,8 +19,10 @@ namespace {
 struct UpdateSum {
   double sum = 0.0, largest = -1.0;
   int worst = 0;
+  double dot = 0.0, norm2 = 0.0, prev2 = 0.0;  ///< against the previous update (scaled by 1/chi)
 };
-UpdateSum scaledUpdateSum(const Eigen::VectorXd& inv_chi, const Eigen::VectorXd& dY, int first, int end) {
+UpdateSum scaledUpdateSum(const Eigen::VectorXd& inv_chi, const Eigen::VectorXd& dY, int first, int end,
+                          const Eigen::VectorXd* prev) {
   UpdateSum u;
   u.worst = first;
   for (int i = first; i < end; ++i) {
@@ -31,6 +33,13 @@ UpdateSum scaledUpdateSum(const Eigen::VectorXd& inv_chi, const Eigen::VectorXd&
       u.worst = i;
     }
   }
+  if (prev)
+    for (int i = first; i < end; ++i) {
+      const double a = dY[i] * inv_chi[i], b = (*prev)[i] * inv_chi[i];
+      u.dot += a * b;
+      u.norm2 += a * a;
+      u.prev2 += b * b;
+    }
   return u;
 }
 
@@ -86,12 +95,16 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
   double sigma_before = 0.0, mu_before = mu;
   bool last_kept = false;
   int k = 0;  // accepted updates
+  // Two-cycle damping: the update before (its direction), when there is one to compare with.
+  Eigen::VectorXd dY_prev(options.damp_two_cycles ? n : 0);
+  bool have_prev = false;
   auto undoLastUpdate = [&]() {
     Y = Y_before;
     sigma_prev = sigma_before;
     mu = mu_before;
     --k;
     last_kept = false;
+    have_prev = false;
   };
   while (k < options.max_iterations) {
     const bool assembled = fresh;
@@ -141,7 +154,7 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       finite[part] = allFinite(dY, first, end);
       if (!finite[part]) return;
       system.conditionStep(Y, dY, first, end);  // (the whole vector when not split)
-      sums[part] = scaledUpdateSum(inv_chi, dY, first, end);
+      sums[part] = scaledUpdateSum(inv_chi, dY, first, end, have_prev ? &dY_prev : nullptr);
       limit[part] = system.stepLimit(dY, first, end);
     });
     if (!(finite[0] && finite[1])) {
@@ -178,12 +191,28 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
     if (std::getenv("MD_NEWTON_TRACE"))
       std::fprintf(stderr, "newton %d sigma %.3e mu %.3e worst %s dY %.3e%s\n", k, sigma, mu,
                    system.describe(worst).c_str(), dY[worst], assembled ? "" : " (kept Jacobian)");
-    const double applied = std::min(mu, std::min(limit[0], limit[1]));
+    double applied = std::min(mu, std::min(limit[0], limit[1]));
+    if (have_prev) {
+      // An update that undoes the one before (cosine of the scaled updates below
+      // -kTwoCycleCosine, and at least kTwoCycleRatio of its length: a shrinking alternation
+      // is convergence) is a two-cycle across a kink, a touchdown node in and out of contact:
+      // half of it lands between the two iterates. (Eq. 40 sees no growth there: sigma stays.)
+      constexpr double kTwoCycleCosine = 0.9, kTwoCycleRatio = 0.5;
+      const double dot = sums[0].dot + sums[1].dot;
+      const double now2 = sums[0].norm2 + sums[1].norm2, before2 = sums[0].prev2 + sums[1].prev2;
+      if (dot < -kTwoCycleCosine * std::sqrt(now2 * before2) && now2 > kTwoCycleRatio * kTwoCycleRatio * before2)
+        applied *= 0.5;
+    }
+
     if (options.reuse_jacobian) Y_before.resize(n);
     inParts(fork, split, n, [&](int first, int end, int) {
       if (options.reuse_jacobian) Y_before.segment(first, end - first) = Y.segment(first, end - first);
       Y.segment(first, end - first) += applied * dY.segment(first, end - first);  // eq. 38
     });
+    if (options.damp_two_cycles) {
+      dY_prev.swap(dY);  // (dY is rewritten from -R in the next iteration)
+      have_prev = true;
+    }
     ++k;
     summary.iterations = k;
     summary.error = sigma;

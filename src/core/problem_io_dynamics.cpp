@@ -207,7 +207,7 @@ void readTopMotion(const Item& it, TopMotion& tm) {
 void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   const Map m(it, {"duration", "dt", "output_interval", "snapshot_interval", "record_s", "scheme", "lambda_inf",
                    "alpha_m", "alpha_k", "gamma", "max_cut_levels", "tolerance", "max_iterations", "relaxation",
-                   "adaptive_relaxation", "jacobian_reuse", "threads", "adaptive_mesh", "mesh_weight", "top_motion"});
+                   "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "threads", "adaptive_mesh", "mesh_weight", "top_motion"});
   d.duration = m.number("duration", d.duration, Range::Positive);
   d.dt = m.number("dt", d.dt, Range::Positive);
   if (m.has("output_interval")) {
@@ -300,6 +300,7 @@ void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   }
   if (m.has("adaptive_relaxation")) d.adaptive_relaxation = readBool(m.at("adaptive_relaxation"));
   if (m.has("jacobian_reuse")) d.jacobian_reuse = readBool(m.at("jacobian_reuse"));
+  if (m.has("damp_two_cycles")) d.damp_two_cycles = readBool(m.at("damp_two_cycles"));
   if (m.has("threads")) {
     const Item ti = m.at("threads");
     const long long v = readInteger(ti);

@@ -426,3 +426,49 @@ TEST(Newton, EstimatedConvergenceSavesTheConfirmingIteration) {
   EXPECT_LT((Ye - root).cwiseAbs().mean(), plain.tolerance);
   EXPECT_GT(se.error, plain.tolerance);  // stopped on the estimate, not on the last update
 }
+
+// Newton on sign(x) sqrt|x| jumps from x to -x forever (the update is -2x): a two-cycle with
+// sigma constant, which eq. 40 never sees. damp_two_cycles halves the second update, which lands
+// on the root. A shrinking alternation (a Jacobian too small by 0.7: x -> -0.43 x) converges
+// and is left alone: the same iterates with the option as without.
+TEST(Newton, TwoCycleDampingLandsBetweenTheTwoIterates) {
+  auto f = [](double x) { return std::copysign(std::sqrt(std::abs(x)), x); };
+  auto df = [](double x) { return 0.5 / std::sqrt(std::max(std::abs(x), 1e-300)); };
+  NewtonOptions o;
+  o.tolerance = 1e-12;
+  o.max_iterations = 40;
+  {
+    Scalar s(f, df);
+    Eigen::VectorXd x(1);
+    x[0] = 0.25;
+    const SolverSummary r = solveNewton(s, x, o);
+    EXPECT_FALSE(r.converged) << r.message;  // cycles between +-0.25 until the limit
+    EXPECT_NEAR(std::abs(x[0]), 0.25, 1e-12);
+  }
+  o.damp_two_cycles = true;
+  {
+    Scalar s(f, df);
+    Eigen::VectorXd x(1);
+    x[0] = 0.25;
+    const SolverSummary r = solveNewton(s, x, o);
+    ASSERT_TRUE(r.converged) << r.message;
+    EXPECT_LE(r.iterations, 3);  // 0.25 -> -0.25 -> 0 (halved), then a zero update
+    EXPECT_EQ(x[0], 0.0);
+  }
+  // Alternating but shrinking: x - x / 0.7 = -0.43 x per update.
+  auto g = [](double x) { return x; };
+  auto dg = [](double) { return 0.7; };
+  std::vector<double> plain, damped;
+  for (bool damp : {false, true}) {
+    NewtonOptions q;
+    q.tolerance = 1e-12;
+    q.adaptive = false;
+    q.damp_two_cycles = damp;
+    Scalar s(g, dg);
+    Eigen::VectorXd x(1);
+    x[0] = 1.0;
+    ASSERT_TRUE(solveNewton(s, x, q).converged);
+    (damp ? damped : plain) = s.iterates;
+  }
+  EXPECT_EQ(plain, damped);
+}

@@ -79,6 +79,7 @@ TEST(ProblemIo, ParsesDynamicsSection) {
   max_iterations: 40
   relaxation: 0.8
   adaptive_relaxation: false
+  damp_two_cycles: true
   threads: 2
   adaptive_mesh: true
   mesh_weight: 15
@@ -101,6 +102,7 @@ TEST(ProblemIo, ParsesDynamicsSection) {
   EXPECT_EQ(d.threads, 2);
   EXPECT_DOUBLE_EQ(d.relaxation, 0.8);
   EXPECT_FALSE(d.adaptive_relaxation);
+  EXPECT_TRUE(d.damp_two_cycles);
   EXPECT_TRUE(d.adaptive_mesh);
   EXPECT_DOUBLE_EQ(d.mesh_weight, 15);
   const TopMotion& tm = d.top_motion;

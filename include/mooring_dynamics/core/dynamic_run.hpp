@@ -30,6 +30,7 @@ inline NewtonOptions stepNewtonOptions(const DynamicOptions& o) {
   // and A.2 runs this saves 16-24 % of the iterations and moves the top tension by 0.4 N and
   // 0.005 N rms, against some 200 N between base steps of 0.1 and 0.05 s.
   no.estimate_convergence = true;
+  no.damp_two_cycles = o.damp_two_cycles;  // dynamics.damp_two_cycles
   return no;
 }
 

@@ -71,6 +71,11 @@ struct DynamicOptions {
   /// contact events make the Jacobian jump (it changed where the 2-D chain mooring cut steps).
   /// The step predictor then extrapolates the rate's change too (docs/method.md).
   bool jacobian_reuse = false;
+  /// Halve a Newton update that undoes the one before (NewtonOptions::damp_two_cycles): a
+  /// touchdown node cycling in and out of contact. Same tolerance, fewer iterations where the
+  /// line lands on the seabed (A.3: 11 744 -> 11 144); off by default, so that the paper cases'
+  /// published runs stay as they are (the box method's step cuts move with any change).
+  bool damp_two_cycles = false;
 
   /// Threads of the 2-D and 3-D dynamic solvers, 1 or 2: with 2 a second thread assembles and
   /// eliminates the upper half of the line in every Newton iteration (the Newton matrix's

@@ -89,6 +89,12 @@ struct NewtonOptions {
   /// contraction makes the estimate less safe). Off by default (eq. 39 on the last update only).
   bool estimate_convergence = false;
   double estimate_max_theta = 0.1;
+  /// Halve an update that reverses the one before (cosine of the two, scaled by 1/chi, below
+  /// -0.9): Newton cycling between two iterates across a kink, such as a touchdown node in and
+  /// out of contact with the seabed. Eq. 40 does not see such a cycle (sigma stays the same)
+  /// and lets it run until rounding makes sigma grow; half the update lands between the two.
+  /// Off by default (dynamics.damp_two_cycles turns it on for the time steps).
+  bool damp_two_cycles = false;
 };
 
 /// What solveNewton did with the Jacobian (modified Newton bookkeeping).
