@@ -138,8 +138,10 @@ std::function<TopState(double t)> makeTopMotion(const TopMotion& m, double x0, d
       return [x0, y0, z0, waves](double t) {
         TopState st = held(x0, y0, z0);
         if (waves && !waves->empty()) {
-          st.z = z0 + waves->elevation(x0, y0, t);
-          st.vz = waves->elevationRate(x0, y0, t);
+          double eta, rate;
+          waves->elevationAndRate(x0, y0, t, eta, rate);
+          st.z = z0 + eta;
+          st.vz = rate;
         }
         return st;
       };

@@ -332,6 +332,23 @@ double WaveField::elevationRate(double x, double y, double t) const {
   return r * rate + dr * eta;
 }
 
+void WaveField::elevationAndRate(double x, double y, double t, double& eta_out, double& rate_out) const {
+  eta_out = rate_out = 0.0;
+  if (components_.empty()) return;
+  const double r = rampFactor(t);
+  const double dr = rampRate(ramp_, t);
+  double eta = 0.0, rate = 0.0;
+  for (std::size_t i = 0; i < components_.size(); ++i) {
+    const WaveComponent& c = components_[i];
+    double sth, cth;
+    sinCos(phaseOf(c, kin_[i].cd, kin_[i].sd, x, y, t), sth, cth);
+    rate += c.amplitude * c.omega * sth;
+    eta += c.amplitude * cth;  // (elevationRate's eta when dr != 0, elevation's always)
+  }
+  eta_out = r * eta;
+  rate_out = r * rate + dr * eta;
+}
+
 void WaveField::velocity(double x, double y, double z, double t, double& vx, double& vy, double& vz) const {
   vx = vy = vz = 0.0;
   if (components_.empty()) return;

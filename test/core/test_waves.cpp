@@ -270,6 +270,28 @@ TEST(Waves, RampStartsFromRest) {
   EXPECT_EQ(vz, 0.0);
 }
 
+// The wave follower's one-pass elevation and rate: elevation() and elevationRate() bit for bit,
+// before, during and after the ramp, on a random sea travelling at an angle.
+TEST(Waves, ElevationAndRateInOnePassAreTheTwoSums) {
+  WaveSpec s;
+  s.type = WaveSpec::Type::PiersonMoskowitz;
+  s.hs = 9.8;
+  s.tp = 16.0;
+  s.direction = 0.4;
+  s.ramp = 20.0;
+  const WaveField f(s, 1860.0, kG);
+  for (double t : {-1.0, 0.0, 3.7, 19.9, 20.0, 250.3}) {
+    double eta, rate;
+    f.elevationAndRate(120.0, -35.0, t, eta, rate);
+    EXPECT_EQ(eta, f.elevation(120.0, -35.0, t)) << "t " << t;
+    EXPECT_EQ(rate, f.elevationRate(120.0, -35.0, t)) << "t " << t;
+  }
+  double eta = 1.0, rate = 1.0;
+  WaveField().elevationAndRate(0.0, 0.0, 1.0, eta, rate);
+  EXPECT_EQ(eta, 0.0);
+  EXPECT_EQ(rate, 0.0);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Spectra and random seas
 

@@ -54,6 +54,9 @@ class WaveField {
   double elevation(double x, double y, double t) const;
   /// Time derivative of the elevation [m/s].
   double elevationRate(double x, double y, double t) const;
+  /// elevation() and elevationRate() in one pass (one sine and cosine per component), the same
+  /// values to the bit.
+  void elevationAndRate(double x, double y, double t, double& eta, double& rate) const;
   /// Water-particle velocity (vx, vy, vz) [m/s] at (x, y, z) and time t.
   void velocity(double x, double y, double z, double t, double& vx, double& vy, double& vz) const;
   /// Water-particle acceleration [m/s^2].
