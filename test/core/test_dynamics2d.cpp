@@ -678,6 +678,24 @@ TEST(Dynamics2D, JacobianReuseKeepsTheFactorizationAcrossOutputSamples) {
       << r.jacobians << " Jacobians in " << r.steps << " steps";
 }
 
+namespace {
+
+/// Largest difference between the top tensions of two completed runs of the same problem [N]
+/// (fatal failures when either did not complete or their samples differ in number).
+double largestTopTensionDifference(const DynamicSeries& a, const DynamicSeries& b) {
+  double worst = 0.0;
+  [&] {
+    ASSERT_TRUE(a.completed) << a.message;
+    ASSERT_TRUE(b.completed) << b.message;
+    ASSERT_EQ(a.top_tension.size(), b.top_tension.size());
+    for (std::size_t i = 0; i < a.top_tension.size(); ++i)
+      worst = std::max(worst, std::abs(a.top_tension[i] - b.top_tension[i]));
+  }();
+  return worst;
+}
+
+}  // namespace
+
 // Modified Newton stops on the same tolerance as plain Newton, so the series agree to well within
 // what the tolerance allows; with a kept Jacobian the rate's change over the last step is
 // extrapolated as well (second-order predictor, as in 3-D), which starts the linear iteration
@@ -691,12 +709,8 @@ TEST(Dynamics2D, JacobianReuseGivesPlainNewtonsSeries) {
   const DynamicSeries plain = runDynamic(p);
   p.dynamics.jacobian_reuse = true;
   const DynamicSeries kept = runDynamic(p);
-  ASSERT_TRUE(plain.completed) << plain.message;
-  ASSERT_TRUE(kept.completed) << kept.message;
-  ASSERT_EQ(plain.top_tension.size(), kept.top_tension.size());
   double worst = 0.0;
-  for (std::size_t i = 0; i < plain.top_tension.size(); ++i)
-    worst = std::max(worst, std::abs(plain.top_tension[i] - kept.top_tension[i]));
+  ASSERT_NO_FATAL_FAILURE(worst = largestTopTensionDifference(plain, kept));
   // A converged step is within about the tolerance 1e-6 of chi (eq. 39) of the exact step
   // solution; over these 300 steps the top tension (9 kN) moved by 0.006 N at most.
   constexpr double kTensionAgreement = 0.1;  // [N], against 2.5 kN of wave-driven std
@@ -717,12 +731,8 @@ TEST(Dynamics2D, TwoCycleDampingSavesIterationsAtTouchdown) {
   const DynamicSeries plain = runDynamic(p);
   p.dynamics.damp_two_cycles = true;
   const DynamicSeries damped = runDynamic(p);
-  ASSERT_TRUE(plain.completed) << plain.message;
-  ASSERT_TRUE(damped.completed) << damped.message;
-  ASSERT_EQ(plain.top_tension.size(), damped.top_tension.size());
   double worst = 0.0;
-  for (std::size_t i = 0; i < plain.top_tension.size(); ++i)
-    worst = std::max(worst, std::abs(plain.top_tension[i] - damped.top_tension[i]));
+  ASSERT_NO_FATAL_FAILURE(worst = largestTopTensionDifference(plain, damped));
   // Measured: 1652 -> 1591 iterations, the same 2 cuts, 0.07 N at most apart. For scale, halving
   // A.3's base step moves this series by some 200 N rms (docs/validation.md).
   constexpr double kTensionAgreement = 1.0;  // [N]
