@@ -562,7 +562,14 @@ namespace {
 /// One attempted step of size dt from the accepted state; on success the state advances.
 bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   const double t_new = im.t + dt;
-  const TopInput top = im.top(t_new);
+  // The top's motion at t_new (on this thread: a user's source may not be thread-safe) while the
+  // second thread, if any, takes the wave phases at t_new (WaveVelocityCache::setTime; the step's
+  // first evaluation would otherwise compute them alone, with the second thread waiting).
+  TopInput top;
+  if (im.fork && !im.wave_cache.empty())
+    runBoth(im.fork.get(), [&] { top = im.top(t_new); }, [&] { im.wave_cache.setTime(t_new); });
+  else
+    top = im.top(t_new);
   DynamicStepSystem sys(im, t_new, dt, top);
   // Predictor: constant rate; with modified Newton the rate's change over the last step of the
   // same size is extrapolated too (as in 3-D), which starts the kept Jacobian's linear
