@@ -500,7 +500,7 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
     // the sum (three look-ups in the current table, the cache's bookkeeping), and its rates and
     // angles, which stay split at the meeting node. A.2 at 0.1 s, timed on one thread: the water
     // phase took 0.71 s in the upper half against 0.34 s in the lower; split at node 198 of
-    // 274 instead of 137, 0.54 and 0.53 s.
+    // 274 instead of 137, 0.55 and 0.55 s.
     constexpr double kWaterWork = 40.0, kRestWork = 8.0;
     std::vector<double> z(static_cast<std::size_t>(im.nodes()));
     for (int j = 0; j < im.nodes(); ++j) z[static_cast<std::size_t>(j)] = im.Y[N * j + Z];
