@@ -317,19 +317,9 @@ double WaveField::elevation(double x, double y, double t) const {
 }
 
 double WaveField::elevationRate(double x, double y, double t) const {
-  if (components_.empty()) return 0.0;
-  const double r = rampFactor(t);
-  const double dr = rampRate(ramp_, t);
-  double eta = 0.0, rate = 0.0;
-  for (std::size_t i = 0; i < components_.size(); ++i) {
-    const WaveComponent& c = components_[i];
-    const double th = phaseOf(c, kin_[i].cd, kin_[i].sd, x, y, t);
-    double sth, cth;
-    sinCos(th, sth, cth);
-    rate += c.amplitude * c.omega * sth;
-    if (dr != 0.0) eta += c.amplitude * cth;
-  }
-  return r * rate + dr * eta;
+  double eta, rate;
+  elevationAndRate(x, y, t, eta, rate);
+  return rate;
 }
 
 void WaveField::elevationAndRate(double x, double y, double t, double& eta_out, double& rate_out) const {
@@ -343,7 +333,7 @@ void WaveField::elevationAndRate(double x, double y, double t, double& eta_out, 
     double sth, cth;
     sinCos(phaseOf(c, kin_[i].cd, kin_[i].sd, x, y, t), sth, cth);
     rate += c.amplitude * c.omega * sth;
-    eta += c.amplitude * cth;  // (elevationRate's eta when dr != 0, elevation's always)
+    eta += c.amplitude * cth;  // elevation()'s sum, term for term
   }
   eta_out = r * eta;
   rate_out = r * rate + dr * eta;

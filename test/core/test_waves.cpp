@@ -270,9 +270,10 @@ TEST(Waves, RampStartsFromRest) {
   EXPECT_EQ(vz, 0.0);
 }
 
-// The wave follower's one-pass elevation and rate: elevation() and elevationRate() bit for bit,
-// before, during and after the ramp, on a random sea travelling at an angle.
-TEST(Waves, ElevationAndRateInOnePassAreTheTwoSums) {
+// The wave follower's one-pass elevation and rate: the elevation is elevation()'s bit for bit,
+// the rate its time derivative (central differences), before,
+// during and after the ramp, on a random sea travelling at an angle.
+TEST(Waves, ElevationAndRateInOnePass) {
   WaveSpec s;
   s.type = WaveSpec::Type::PiersonMoskowitz;
   s.hs = 9.8;
@@ -280,11 +281,17 @@ TEST(Waves, ElevationAndRateInOnePassAreTheTwoSums) {
   s.direction = 0.4;
   s.ramp = 20.0;
   const WaveField f(s, 1860.0, kG);
+  constexpr double kStep = 1e-4;        // [s]
+  // [m/s]: step^2 times the third derivative (~1e-8), and at the ramp's ends, where R'' jumps by
+  // (pi / ramp)^2 / 2 = 0.012 1/s^2, step / 2 times that times the elevation (~1.5e-6).
+  constexpr double kRateTol = 1e-5;
   for (double t : {-1.0, 0.0, 3.7, 19.9, 20.0, 250.3}) {
     double eta, rate;
     f.elevationAndRate(120.0, -35.0, t, eta, rate);
     EXPECT_EQ(eta, f.elevation(120.0, -35.0, t)) << "t " << t;
     EXPECT_EQ(rate, f.elevationRate(120.0, -35.0, t)) << "t " << t;
+    const double fd = (f.elevation(120.0, -35.0, t + kStep) - f.elevation(120.0, -35.0, t - kStep)) / (2.0 * kStep);
+    EXPECT_NEAR(rate, fd, kRateTol) << "t " << t;
   }
   double eta = 1.0, rate = 1.0;
   WaveField().elevationAndRate(0.0, 0.0, 1.0, eta, rate);
