@@ -65,53 +65,58 @@ inline void taylorParts(const T& u, const T& u2, T& even, T& odd) {
   }
 }
 
-/// The twelve sums (WaveVelocityCache's order) over components [0, n), n a multiple of kLanes,
-/// for a point displaced by (dx, dz) from its reference, with Taylor series of order Order.
-/// The reference values of [0, n) (cos_b, sin_b, ep, em) are overwritten with those at the
-/// displaced point: the point's reference follows it.
-struct SumInputs {
-  const double *k, *kx, *cos_a, *sin_a;
-  double *cos_b, *sin_b, *ep, *em;
-  const double* cx[6];
-  const double* cz[6];
-};
+/// The twelve sums (WaveVelocityCache's order) over the first `groups` lane groups of kLanes
+/// components, for a point displaced by (dx, dz) from its reference, with Taylor series of order
+/// Order. `coef` holds the components' constants and `state` the point's reference values,
+/// interleaved by lane group (WaveVelocityCache::coef_, state_: two streams through memory,
+/// instead of one per quantity). The reference values of those groups (cos B, sin B, E+, E-) are
+/// overwritten with those at the displaced point: the point's reference follows it.
 template <int Order>
-MD_WAVE_SIMD_CLONES void componentSums(const SumInputs& in, std::size_t n, double dx, double dz, double* out) {
+MD_WAVE_SIMD_CLONES void componentSums(const double* __restrict coef, double* __restrict state, std::size_t groups,
+                                       double dx, double dz, double* out) {
+  using C = WaveVelocityCache;
+  constexpr std::size_t G = C::kGroup;  // one row of a group
   Lane sx[6], sz[6];
-  for (int q = 0; q < 6; ++q) sx[q] = sz[q] = MD_LOAD(in.k) * 0.0;
-  for (std::size_t i = 0; i < n; i += kLanes) {
+  for (int q = 0; q < 6; ++q) sx[q] = sz[q] = MD_LOAD(coef) * 0.0;
+  for (std::size_t i = 0; i < groups * G; i += kLanes) {
+    // Lanes [i, i + kLanes) of group i / kGroup: rows of kGroup components.
+    const double* c = coef + i / C::kGroup * C::kCoefGroup + i % C::kGroup;
+    double* st = state + i / C::kGroup * C::kStateGroup + i % C::kGroup;
     // e^{+-k dz}: the exponentials E+- carried from the reference elevation.
-    const Lane u = MD_LOAD(in.k + i) * dz;
+    const Lane u = MD_LOAD(c + C::kRowK * G) * dz;
     Lane ev, od;
     taylorParts<Order>(u, u * u, ev, od);
-    const Lane Ep = MD_LOAD(in.ep + i) * (ev + od), Em = MD_LOAD(in.em + i) * (ev - od);
+    const Lane Ep = MD_LOAD(st + C::kRowEp * G) * (ev + od);
+    const Lane Em = MD_LOAD(st + C::kRowEm * G) * (ev - od);
     const Lane ch = Ep + Em, sh = Ep - Em;
     // cos, sin of kx dx: the phase B carried from the reference abscissa, then A added.
-    const Lane d = MD_LOAD(in.kx + i) * dx;
+    const Lane d = MD_LOAD(c + C::kRowKx * G) * dx;
     Lane cd, sd;
     taylorParts<Order>(d, -(d * d), cd, sd);
-    const Lane cb = MD_LOAD(in.cos_b + i), sb = MD_LOAD(in.sin_b + i);
+    const Lane cb = MD_LOAD(st + C::kRowCosB * G), sb = MD_LOAD(st + C::kRowSinB * G);
     const Lane cbx = cb * cd - sb * sd, sbx = sb * cd + cb * sd;
-    *reinterpret_cast<Lane*>(in.cos_b + i) = cbx;
-    *reinterpret_cast<Lane*>(in.sin_b + i) = sbx;
-    *reinterpret_cast<Lane*>(in.ep + i) = Ep;
-    *reinterpret_cast<Lane*>(in.em + i) = Em;
-    const Lane ca = MD_LOAD(in.cos_a + i), sa = MD_LOAD(in.sin_a + i);
+    *reinterpret_cast<Lane*>(st + C::kRowCosB * G) = cbx;
+    *reinterpret_cast<Lane*>(st + C::kRowSinB * G) = sbx;
+    *reinterpret_cast<Lane*>(st + C::kRowEp * G) = Ep;
+    *reinterpret_cast<Lane*>(st + C::kRowEm * G) = Em;
+    const Lane ca = MD_LOAD(c + C::kRowCosA * G), sa = MD_LOAD(c + C::kRowSinA * G);
     const Lane cth = cbx * ca - sbx * sa, sth = sbx * ca + cbx * sa;
     const Lane p1 = ch * cth, p2 = ch * sth, p3 = sh * cth, p4 = sh * sth;
     // vx ~ ch cos(th), vz ~ sh sin(th); d/dx turns cos into -sin (times kx), d/dz ch into sh.
-    sx[0] += MD_LOAD(in.cx[0] + i) * p1;
-    sx[1] -= MD_LOAD(in.cx[1] + i) * p2;
-    sx[2] += MD_LOAD(in.cx[2] + i) * p3;
-    sx[3] -= MD_LOAD(in.cx[3] + i) * p1;
-    sx[4] -= MD_LOAD(in.cx[4] + i) * p4;
-    sx[5] += MD_LOAD(in.cx[5] + i) * p1;
-    sz[0] += MD_LOAD(in.cz[0] + i) * p4;
-    sz[1] += MD_LOAD(in.cz[1] + i) * p3;
-    sz[2] += MD_LOAD(in.cz[2] + i) * p2;
-    sz[3] -= MD_LOAD(in.cz[3] + i) * p4;
-    sz[4] += MD_LOAD(in.cz[4] + i) * p1;
-    sz[5] += MD_LOAD(in.cz[5] + i) * p4;
+    const double* cx = c + C::kRowCx * G;
+    const double* cz = c + C::kRowCz * G;
+    sx[0] += MD_LOAD(cx + 0 * G) * p1;
+    sx[1] -= MD_LOAD(cx + 1 * G) * p2;
+    sx[2] += MD_LOAD(cx + 2 * G) * p3;
+    sx[3] -= MD_LOAD(cx + 3 * G) * p1;
+    sx[4] -= MD_LOAD(cx + 4 * G) * p4;
+    sx[5] += MD_LOAD(cx + 5 * G) * p1;
+    sz[0] += MD_LOAD(cz + 0 * G) * p4;
+    sz[1] += MD_LOAD(cz + 1 * G) * p3;
+    sz[2] += MD_LOAD(cz + 2 * G) * p2;
+    sz[3] -= MD_LOAD(cz + 3 * G) * p4;
+    sz[4] += MD_LOAD(cz + 4 * G) * p1;
+    sz[5] += MD_LOAD(cz + 5 * G) * p4;
   }
   for (int q = 0; q < 6; ++q) {
     out[q] = total(sx[q]);
@@ -141,7 +146,7 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points,
     cos_dir_ = std::cos(direction_);
     sin_dir_ = std::sin(direction_);
   }
-  np_ = (nc_ + kLanes - 1) / kLanes * kLanes;
+  np_ = (nc_ + kGroup - 1) / kGroup * kGroup;
   const double h = f.depth_;
   // One component's constants before sorting: the depth factors as A (E+ +- E-) with
   // E+- = e^{+-k (z + o+-)}: deep water (1 - e^{-2kh})^{-1} (e^{kz} +- e^{-k(z + 2h)}), else
@@ -192,10 +197,11 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points,
   z_skip_.assign(np_, std::numeric_limits<double>::infinity());
   k_upto_.assign(np_, 0.0);
   kx_upto_.assign(np_, 0.0);
-  for (int q = 0; q < 6; ++q) {
-    cx_[q].assign(np_, 0.0);
-    cz_[q].assign(np_, 0.0);
-  }
+  // The kernel's constants, interleaved by lane group (kCoefGroup per group; cos A = 1 until
+  // setTime), a cache line of slack in front for the alignment of coefData().
+  coef_.assign(np_ / kGroup * kCoefGroup + kAlignSlack, 0.0);
+  double* const coef = coefData();
+  for (std::size_t i = 0; i < np_; ++i) coef[coefIndex(i, kRowCosA)] = 1.0;
   for (std::size_t i = 0; i < nc_; ++i) {
     const Comp& c = comps[i];
     k_[i] = c.k;
@@ -209,12 +215,14 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points,
     k_max_ = std::max(k_max_, c.k);
     kx_upto_[i] = kx_max_;
     k_upto_[i] = k_max_;
+    coef[coefIndex(i, kRowK)] = c.k;
+    coef[coefIndex(i, kRowKx)] = c.kx;
     const double ax = c.A * c.aw * c.cd, az = c.A * c.aw;
     const double pw[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};  // powers of kx, k
     for (int q = 0; q < 6; ++q) {
       const double f_q = std::pow(c.kx, pw[q][0]) * std::pow(c.k, pw[q][1]);
-      cx_[q][i] = ax * f_q;
-      cz_[q][i] = az * f_q;
+      coef[coefIndex(i, kRowCx + q)] = ax * f_q;
+      coef[coefIndex(i, kRowCz + q)] = az * f_q;
     }
   }
   for (std::size_t i = nc_; i < np_; ++i) {  // the padding's prefixes: those of all components
@@ -222,13 +230,11 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points,
     k_upto_[i] = k_max_;
   }
   exact_.assign(points, Exact{});
-  cos_a_.assign(np_, 1.0);
-  sin_a_.assign(np_, 0.0);
   x_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
   z_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
   valid_.assign(points, 0);
   moves_.assign(points, 0);
-  for (auto* v : {&cos_b_, &sin_b_, &ep_, &em_}) v->assign(points * np_, 0.0);
+  state_.assign(points * (np_ / kGroup * kStateGroup) + kAlignSlack, 0.0);
 }
 
 void WaveVelocityCache::setTime(double t) {
@@ -236,9 +242,10 @@ void WaveVelocityCache::setTime(double t) {
   t_ = t;
   have_time_ = true;
   ramp_ = field_->rampFactor(t);
+  double* const coef = coefData();
   for (std::size_t i = 0; i < nc_; ++i) {
     const double a = phase_[i] - omega_[i] * t;
-    sinCos(a, sin_a_[i], cos_a_[i]);
+    sinCos(a, coef[coefIndex(i, kRowSinA)], coef[coefIndex(i, kRowCosA)]);
   }
 }
 
@@ -248,7 +255,7 @@ std::size_t WaveVelocityCache::seenAt(double zc) const {
   const std::size_t seen =
       static_cast<std::size_t>(std::upper_bound(z_skip_.begin(), z_skip_.begin() + static_cast<std::ptrdiff_t>(nc_), zc) -
                                z_skip_.begin());
-  return (seen + kLanes - 1) / kLanes * kLanes;
+  return (seen + kGroup - 1) / kGroup * kGroup;
 }
 
 std::size_t WaveVelocityCache::componentsAt(double z) const {
@@ -276,11 +283,7 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
       return;
     }
   }
-  const std::size_t off = p * np_;
-  double* cb = cos_b_.data() + off;
-  double* sb = sin_b_.data() + off;
-  double* ep = ep_.data() + off;
-  double* em = em_.data() + off;
+  double* const st = stateData() + p * (np_ / kGroup * kStateGroup);  // point p's groups
   // The reference: moved to the point by every exact evaluation (componentSums), computed
   // afresh when the point jumped beyond the Taylor series' reach (also when it is NaN) and
   // every kResync moves, so that the rounding of the carried values does not build up.
@@ -296,23 +299,18 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
   const std::size_t n = seenAt(zc);
   // Components [valid, n) have no reference values yet (or stale ones): compute them there.
   for (std::size_t i = valid_[p]; i < n; ++i) {
-    sinCos(kx_[i] * x_ref_[p], sb[i], cb[i]);
-    ep[i] = std::exp(k_[i] * (z_ref_[p] + op_[i]));
-    em[i] = std::exp(-k_[i] * (z_ref_[p] + om_[i]));
+    sinCos(kx_[i] * x_ref_[p], st[stateIndex(i, kRowSinB)], st[stateIndex(i, kRowCosB)]);
+    st[stateIndex(i, kRowEp)] = std::exp(k_[i] * (z_ref_[p] + op_[i]));
+    st[stateIndex(i, kRowEm)] = std::exp(-k_[i] * (z_ref_[p] + om_[i]));
   }
   valid_[p] = std::max(valid_[p], n);
-  SumInputs in{k_.data(), kx_.data(), cos_a_.data(), sin_a_.data(), cb, sb, ep, em, {}, {}};
-  for (int q = 0; q < 6; ++q) {
-    in.cx[q] = cx_[q].data();
-    in.cz[q] = cz_[q].data();
-  }
   double sums[12];
   // The shorter series where the largest argument among the components summed allows it
   // (a deep point sees long waves only, and moves little in a step).
   if (n == 0 || std::max(std::abs(dx) * kx_upto_[n - 1], std::abs(dz) * k_upto_[n - 1]) <= kShortTaylorRadius)
-    componentSums<7>(in, n, dx, dz, sums);
+    componentSums<7>(coefData(), st, n / kGroup, dx, dz, sums);
   else
-    componentSums<11>(in, n, dx, dz, sums);
+    componentSums<11>(coefData(), st, n / kGroup, dx, dz, sums);
   if (dx != 0.0 || dz != 0.0) {  // [0, n) now refer to (x, zc); the others are stale
     x_ref_[p] = x;
     z_ref_[p] = zc;

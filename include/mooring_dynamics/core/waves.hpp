@@ -3,6 +3,7 @@
 // buoys. Finite-depth dispersion. Frame: x east, y north, z up, z = 0 mean sea surface.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -139,6 +140,17 @@ class WaveVelocityCache {
   /// remainder over a distance d below 2^{3/2} G3 d^3 / 6 <= kLinearTolerance.
   double linearRadius() const { return lin_radius_; }
 
+  /// Layout of the component sums' data: components in groups of kGroup (the SIMD width of
+  /// the sums), each group a block of rows of kGroup values, so that a sum streams through two
+  /// arrays (the constants and the point's state) instead of one per quantity. Constants per
+  /// group (kCoefGroup values): k, k cos(theta), cos and sin of A, the six coefficients of vx and
+  /// the six of vz; state per point and group (kStateGroup values): cos and sin of B, E+, E-.
+  static constexpr std::size_t kGroup = 8;
+  enum CoefRow : std::size_t { kRowK, kRowKx, kRowCosA, kRowSinA, kRowCx, kRowCz = kRowCx + 6, kCoefRows = kRowCz + 6 };
+  enum StateRow : std::size_t { kRowCosB, kRowSinB, kRowEp, kRowEm, kStateRows };
+  static constexpr std::size_t kCoefGroup = kCoefRows * kGroup;
+  static constexpr std::size_t kStateGroup = kStateRows * kGroup;
+
  private:
   std::size_t seenAt(double zc) const;  ///< components summed at a clamped, relevant elevation
   const WaveField* field_ = nullptr;
@@ -157,15 +169,26 @@ class WaveVelocityCache {
   /// d/dx, d/dz, d2/dx2, d2/dxdz, d2/dz2) and of vz, which fold in a omega, cos(theta), the
   /// powers of k and kx and the depth factors' denominator.
   std::vector<double> k_, kx_, op_, om_, z_skip_, omega_, phase_;
-  std::vector<double> cx_[6], cz_[6];
-  std::vector<double> cos_a_, sin_a_;   ///< of A_i at the current time
+  /// The constants (and cos, sin of A_i at the current time) by group: CoefRow, coefData().
+  std::vector<double> coef_;
   /// Per point: the reference position (NaN until first used) and, per component, cos and sin
   /// of B_i and E+, E- there, valid for the first valid_ components; moves_ counts the moves
   /// of the reference by the Taylor factors since it was last computed afresh.
   std::vector<double> x_ref_, z_ref_;
   std::vector<std::size_t> valid_;
   std::vector<int> moves_;
-  std::vector<double> cos_b_, sin_b_, ep_, em_;
+  std::vector<double> state_;  ///< StateRow, by point then group: stateData()
+  /// coef_ and state_ start kAlignSlack values early: their data from the first 64-byte
+  /// boundary on (whole cache lines per row; the vectors' own alignment is 16 bytes).
+  static constexpr std::size_t kAlignSlack = 8;
+  static double* aligned(std::vector<double>& v) {
+    const auto a = reinterpret_cast<std::uintptr_t>(v.data());
+    return v.data() + ((64 - a % 64) % 64) / sizeof(double);
+  }
+  double* coefData() { return aligned(coef_); }
+  double* stateData() { return aligned(state_); }
+  static std::size_t coefIndex(std::size_t i, std::size_t row) { return i / kGroup * kCoefGroup + row * kGroup + i % kGroup; }
+  static std::size_t stateIndex(std::size_t i, std::size_t row) { return i / kGroup * kStateGroup + row * kGroup + i % kGroup; }
   /// Last exact evaluation of each point inside the water column: time, position, and the
   /// velocity with its first and second derivatives there: for vx then vz, the value, d/dx,
   /// d/dz, d2/dx2, d2/dxdz, d2/dz2 [m/s, 1/s, 1/(m s)].
