@@ -1,6 +1,8 @@
 #include "mooring_dynamics/core/fork_join.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -83,6 +85,24 @@ void ForkJoin::loop() {
     }
     done_.store(seen, std::memory_order_release);
   }
+}
+
+int balancedSplit(const std::vector<double>& cost) {
+  const int n = static_cast<int>(cost.size());
+  if (n < 2) return 0;
+  double total = 0.0;
+  for (double c : cost) total += c;
+  int best = 1;
+  double best_gap = std::numeric_limits<double>::infinity(), below = 0.0;
+  for (int s = 1; s < n; ++s) {
+    below += cost[static_cast<std::size_t>(s - 1)];
+    const double gap = std::abs(below - (total - below));
+    if (gap < best_gap) {
+      best_gap = gap;
+      best = s;
+    }
+  }
+  return best;
 }
 
 }  // namespace core

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+using mooring_dynamics::core::balancedSplit;
 using mooring_dynamics::core::ForkJoin;
 
 // Both halves run, the second on another thread, and run() returns only when both are done:
@@ -56,4 +57,23 @@ TEST(ForkJoin, RethrowsEitherHalfsExceptionAfterBothFinish) {
   int x = 0;
   fork.run([&] { x += 1; }, [] {});
   EXPECT_EQ(x, 1);
+}
+
+// The split balances the two halves' costs: uniform costs split in the middle, a few costly
+// items at one end move the split towards them, and too few items are not split.
+TEST(BalancedSplit, BalancesTheHalvesCosts) {
+  EXPECT_EQ(balancedSplit({}), 0);
+  EXPECT_EQ(balancedSplit({3.0}), 0);
+  EXPECT_EQ(balancedSplit({1.0, 1.0}), 1);
+  EXPECT_EQ(balancedSplit(std::vector<double>(10, 1.0)), 5);
+  // Ten unit items then two of cost 5.5 (as the 2-D solver's junctions): split 10 leaves 10
+  // against 11, split 9 9 against 12, split 11 15.5 against 5.5.
+  std::vector<double> c(10, 1.0);
+  c.push_back(5.5);
+  c.push_back(5.5);
+  EXPECT_EQ(balancedSplit(c), 10);
+  // The costly items first: the split moves to the left of the middle.
+  EXPECT_EQ(balancedSplit({4.0, 1.0, 1.0, 1.0, 1.0}), 1);
+  // Exact ties: the first.
+  EXPECT_EQ(balancedSplit({1.0, 0.0, 1.0}), 1);
 }

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <thread>
 #include <type_traits>
+#include <vector>
 
 namespace mooring_dynamics {
 namespace core {
@@ -93,6 +94,11 @@ void inHalves(ForkJoin* fork, int m, int end, const F& f) {
   }
   runBoth(fork, [&] { f(0, m); }, [&] { f(m, end); });
 }
+
+/// Where to split n work items of costs cost[0 .. n) for inHalves(split, n, f): the split in
+/// [1, n) whose halves' costs, sum cost[0 .. split) and sum cost[split .. n), differ least (the
+/// first of equals); 0 (no split) for fewer than two items. Costs are in any one unit, >= 0.
+int balancedSplit(const std::vector<double>& cost);
 
 }  // namespace core
 }  // namespace mooring_dynamics
