@@ -518,7 +518,8 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
     // of an interval of a material. Timed per interval on one thread: 0.18 against 0.95 us on
     // A.3, 0.26 against 1.47 us on A.2 at 0.1 s (ratios 5.3, 5.6); with two threads the halves
     // of the interval phase came out even at 3.5 on A.3 (0.24 / 0.25 s at 3) and 5 on A.2
-    // (0.55 / 0.53 s at 5.5): the halves' other work differs (A.3's lower half lies on the seabed).
+    // (0.55 / 0.53 s at 5.5), 4 between: the halves' other work differs (A.3's lower half lies on
+    // the seabed).
     constexpr double kJunctionWork = 4.0;
     std::vector<double> cost;
     for (const MeshInterval& iv : im.mesh.intervals) cost.push_back(iv.h > 0.0 ? 1.0 : kJunctionWork);
