@@ -118,38 +118,46 @@ struct DynamicSolver2D::Impl {
   }
 
   /// Spatial rows of every interval at the accepted state y (double), and cos, sin of every
-  /// node's inclination there (the next step's previous level).
+  /// node's inclination there (the next step's previous level). In the halves of the Newton
+  /// iteration (the angles at the meeting node, the intervals at interval_split), on both
+  /// threads when there are two.
   void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out, std::vector<double>& c,
                    std::vector<double>& s) const {
     const int n = nodes();
     out.setZero(N * (n - 1));
     c.resize(static_cast<std::size_t>(n));
     s.resize(static_cast<std::size_t>(n));
-    for (int j = 0; j < n; ++j) {
-      sinCos(y[N * j + PHI], s[static_cast<std::size_t>(j)], c[static_cast<std::size_t>(j)]);
-    }
-    // Each node's load once for the intervals of one material it belongs to.
-    double f1b = 0.0, f2b = 0.0;
-    long load_material = -1;  // that of the load of node j kept from the interval before
-    for (int j = 0; j + 1 < n; ++j) {
-      const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
-      const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
-      const double* ya = y.data() + N * j;
-      const double* yb = ya + N;
-      double* r = out.data() + N * j;
-      if (iv.h > 0.0) {
-        const Material& m = problem.materials[iv.material];
-        const NodeView na{ya, c[a], s[a], &w[a]}, nb{yb, c[b], s[b], &w[b]};
-        double f1a = f1b, f2a = f2b;
-        if (load_material != static_cast<long>(iv.material)) nodeLoadValue(problem.environment, m, na, f1a, f2a);
-        nodeLoadValue(problem.environment, m, nb, f1b, f2b);
-        load_material = static_cast<long>(iv.material);
-        intervalSpatialRows(m, iv.h, na, nb, f1a, f2a, f1b, f2b, r);
-      } else {
-        junctionForces(problem, iv, mat(j), mat(j + 1), ya, yb, w[a], r);
-        load_material = -1;
+    auto angles = [&](int j0, int j1) {
+      for (int j = j0; j < j1; ++j) sinCos(y[N * j + PHI], s[static_cast<std::size_t>(j)], c[static_cast<std::size_t>(j)]);
+    };
+    // Intervals [j0, j1), each node's load once for the intervals of one material it belongs to
+    // (a half's first node computes its own: the same value as the other half's last).
+    auto intervals = [&](int j0, int j1) {
+      double f1b = 0.0, f2b = 0.0;
+      long load_material = -1;  // that of the load of node j kept from the interval before
+      for (int j = j0; j < j1; ++j) {
+        const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
+        const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+        const double* ya = y.data() + N * j;
+        const double* yb = ya + N;
+        double* r = out.data() + N * j;
+        if (iv.h > 0.0) {
+          const Material& m = problem.materials[iv.material];
+          const NodeView na{ya, c[a], s[a], &w[a]}, nb{yb, c[b], s[b], &w[b]};
+          double f1a = f1b, f2a = f2b;
+          if (load_material != static_cast<long>(iv.material)) nodeLoadValue(problem.environment, m, na, f1a, f2a);
+          nodeLoadValue(problem.environment, m, nb, f1b, f2b);
+          load_material = static_cast<long>(iv.material);
+          intervalSpatialRows(m, iv.h, na, nb, f1a, f2a, f1b, f2b, r);
+        } else {
+          junctionForces(problem, iv, mat(j), mat(j + 1), ya, yb, w[a], r);
+          load_material = -1;
+        }
       }
-    }
+    };
+    const int m = BandedMatrix::meetingNode(n);
+    inHalves(m, n, angles);  // (the intervals need both halves' angles)
+    inHalves(m == 0 ? 0 : interval_split, n - 1, intervals);
   }
 };
 

@@ -1,6 +1,8 @@
 // dynamics.threads = 2 in the 2-D and 3-D dynamic solvers (dynamics2d.cpp, dynamics3d.cpp): a
 // second thread takes the upper half of every Newton iteration (water, node terms and interval
-// rows, the two-ended elimination's upper sweep, the vector work). Each thread does the
+// rows, the two-ended elimination's upper sweep, the vector work) and of each accepted step's
+// spatial rows; in 2-D the water and the interval rows split by their cost (the S-tether's
+// wave sums, the junctions of both shipped files), not at the meeting node. Each thread does the
 // operations it would do alone, so the series must be the same bit for bit as with one thread.
 #include <gtest/gtest.h>
 
