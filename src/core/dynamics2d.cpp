@@ -315,14 +315,18 @@ class DynamicStepSystem : public NewtonSystem {
         // Junction (pin) rows: few, left to automatic differentiation (only their non-zero
         // entries written); in double when only the residual is asked for.
         if (J) {
-          J->setZeroRows(row, N);
           AD16 r[N];
           junctionRows(j, iv, Y, c1, c0, r);
+          // With the block structure the 8 rows of 16 entries are written whole (a zero as +0,
+          // as clearing the rows would leave it), else the non-zero entries after clearing.
+          double* const rows = J->blockRow(row);
+          if (!rows) J->setZeroRows(row, N);
           for (int q = 0; q < N; ++q) {
             R[row + q] = r[q].value();
             for (int k = 0; k < 2 * N; ++k) {
               const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
-              if (d != 0.0) J->at(row + q, N * j + k) = d;
+              if (rows) rows[2 * N * q + k] = d != 0.0 ? d : 0.0;
+              else if (d != 0.0) J->at(row + q, N * j + k) = d;
             }
           }
         } else {
@@ -386,12 +390,16 @@ class DynamicStepSystem : public NewtonSystem {
     const double am = im_.ga.alpha_m, ak = im_.ga.alpha_k;
     S y[2 * N], ydw[2 * N], yp[2 * N];
     for (int k = 0; k < 2 * N; ++k) {
+      if constexpr (std::is_same_v<S, double>) y[k] = Y[N * j + k];
+      else y[k] = S(Y[N * j + k], 2 * N, k);
+    }
+    // The inertia of the bodies (junctionInertia) reads node a's u, v, phi at both levels and
+    // their weighted rates only: the other entries of yp and ydw are left unset.
+    for (const int k : {U, V, PHI}) {
       const int idx = N * j + k;
       if constexpr (std::is_same_v<S, double>) {
-        y[k] = Y[idx];
         yp[k] = Yp[idx];
       } else {
-        y[k] = S(Y[idx], 2 * N, k);
         yp[k] = S(Yp[idx]);
         yp[k].derivatives().setZero(2 * N);
       }
@@ -523,11 +531,10 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   }
   {
     // The Newton matrix's rows of a junction (pin rows with automatic differentiation) in those
-    // of an interval of a material. Timed per interval on one thread: 0.18 against 0.95 us on
-    // A.3, 0.26 against 1.47 us on A.2 at 0.1 s (ratios 5.3, 5.6); with two threads the halves
-    // of the interval phase came out even at 3.5 on A.3 (0.24 / 0.25 s at 3) and 5 on A.2
-    // (0.55 / 0.53 s at 5.5), 4 between: the halves' other work differs (A.3's lower half lies on
-    // the seabed).
+    // of an interval of a material. Timed per interval on one thread: 4.5 to 4.6 times (A.3 and
+    // A.2 at 0.1 s: about 1.0-1.2 us against 0.21-0.26 us). With two threads the halves of the
+    // interval phase came out even at 4 in both (A.3 0.27 / 0.26 s, A.2 0.66 / 0.66 s; at 3,
+    // A.2's upper half took 0.70-0.76 s against 0.57): the halves' other work differs.
     constexpr double kJunctionWork = 4.0;
     std::vector<double> cost;
     for (const MeshInterval& iv : im.mesh.intervals) cost.push_back(iv.h > 0.0 ? 1.0 : kJunctionWork);
