@@ -407,11 +407,24 @@ class DynamicStepSystem : public NewtonSystem {
       ydw[k] = (1.0 - am) * yd + am * Ydp[idx];  // weighted rate of eq. 30
     }
     const Water& wa = water_[static_cast<std::size_t>(j)];
+    // cos, sin of the angles of nodes a and b (now) and of node a (at the previous level) from
+    // the nodes' tables, with the derivatives cos() and sin() give them (eqs.: angleOf).
+    const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+    const auto angle = [](const S& phi, double c, double s) -> Angle<S> {
+      if constexpr (std::is_same_v<S, double>) {
+        (void)phi;
+        return {c, s};
+      } else {
+        return {S(c, phi.derivatives() * (-s)), S(s, phi.derivatives() * c)};
+      }
+    };
+    const Angle<S> aa = angle(y[PHI], c_[a], s_[a]), ab = angle(y[N + PHI], c_[b], s_[b]);
+    const Angle<S> ap = angle(yp[PHI], im_.cos_phi[a], im_.sin_phi[a]);
     S sp[N], in1[N], in0[N];
-    junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, sp);
-    junctionInertia(im_.problem, iv, y, ydw, in1);
-    junctionInertia(im_.problem, iv, yp, ydw, in0);
-    junctionConstraints(y, y + N, sp);
+    junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, aa, ab, wa, sp);
+    junctionInertia(im_.problem, iv, y, aa, ydw, in1);
+    junctionInertia(im_.problem, iv, yp, ap, ydw, in0);
+    junctionConstraints(y, y + N, aa, ab, sp);
     constexpr int kJunctionWeighted = 2;  // the force balance; the constraints hold at the new level
     for (int q = 0; q < N; ++q) {
       if (q < kJunctionWeighted)
@@ -531,11 +544,11 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   }
   {
     // The Newton matrix's rows of a junction (pin rows with automatic differentiation) in those
-    // of an interval of a material. Timed per interval on one thread: 4.5 to 4.6 times (A.3 and
-    // A.2 at 0.1 s: about 1.0-1.2 us against 0.21-0.26 us). With two threads the halves of the
-    // interval phase came out even at 4 in both (A.3 0.27 / 0.26 s, A.2 0.66 / 0.66 s; at 3,
-    // A.2's upper half took 0.70-0.76 s against 0.57): the halves' other work differs.
-    constexpr double kJunctionWork = 4.0;
+    // of an interval of a material. Timed per interval on one thread: about 4 times (A.3 and A.2
+    // at 0.1 s: 0.71-0.92 us against 0.18-0.24 us). With two threads the halves of the interval
+    // phase came out even at 3 in both (A.3 0.24 / 0.24 s, A.2 0.43-0.49 / 0.48 s; at 3.5 A.3's
+    // lower half took 0.24-0.29 s against 0.20-0.22): the halves' other work differs.
+    constexpr double kJunctionWork = 3.0;
     std::vector<double> cost;
     for (const MeshInterval& iv : im.mesh.intervals) cost.push_back(iv.h > 0.0 ? 1.0 : kJunctionWork);
     im.interval_split = balancedSplit(cost);

@@ -39,25 +39,40 @@ S waterX(const Water& w, const S* Y) {
   return w.wx + w.dwx_dz * (Y[Z] - w.z);
 }
 
-/// Global velocity (Vx, Vz) of a node from its local components.
+/// cos and sin of a node's inclination Y[PHI], computed once for the functions below that
+/// take them (the same values, and in AutoDiff the same derivatives, as cos(Y[PHI]), sin(Y[PHI])).
 template <class S>
-void globalVelocity(const S* Y, S& Vx, S& Vz) {
+struct Angle {
+  S c, s;
+};
+template <class S>
+Angle<S> angleOf(const S* Y) {
   using std::cos;
   using std::sin;
-  const S c = cos(Y[PHI]), s = sin(Y[PHI]);
-  Vx = Y[U] * s + Y[V] * c;
-  Vz = Y[U] * c - Y[V] * s;
+  return {cos(Y[PHI]), sin(Y[PHI])};
 }
 
-/// Internal force F = T t + Sn n (Fx, Fz) [N].
+/// Global velocity (Vx, Vz) of a node from its local components, with a = angleOf(Y).
+template <class S>
+void globalVelocity(const S* Y, const Angle<S>& a, S& Vx, S& Vz) {
+  Vx = Y[U] * a.s + Y[V] * a.c;
+  Vz = Y[U] * a.c - Y[V] * a.s;
+}
+template <class S>
+void globalVelocity(const S* Y, S& Vx, S& Vz) {
+  globalVelocity(Y, angleOf(Y), Vx, Vz);
+}
+
+/// Internal force F = T t + Sn n (Fx, Fz) [N], with a = angleOf(Y).
+template <class S>
+void internalForce(const Material& m, const S* Y, const Angle<S>& a, S& Fx, S& Fz) {
+  const S T = eq2d::tension(m, Y[EPS]);
+  Fx = T * a.s + Y[SN] * a.c;
+  Fz = T * a.c - Y[SN] * a.s;
+}
 template <class S>
 void internalForce(const Material& m, const S* Y, S& Fx, S& Fz) {
-  using std::cos;
-  using std::sin;
-  const S T = eq2d::tension(m, Y[EPS]);
-  const S c = cos(Y[PHI]), s = sin(Y[PHI]);
-  Fx = T * s + Y[SN] * c;
-  Fz = T * c - Y[SN] * s;
+  internalForce(m, Y, angleOf(Y), Fx, Fz);
 }
 
 /// Distributed load per unit unstretched length at a node, along t (f1) and n (f2): wet weight
@@ -143,18 +158,19 @@ void intervalInertia(const Environment& env, const Material& mat, double h, cons
 }
 
 /// Junction (pin joint, see equations2d.hpp) between nodes a and b at the same arclength:
-/// spatial part of the force balance with the bodies' weight and drag (rows 0-1).
+/// spatial part of the force balance with the bodies' weight and drag (rows 0-1), with
+/// aa = angleOf(Ya), ab = angleOf(Yb).
 template <class S>
 void junctionForces(const Problem& p, const MeshInterval& iv, const Material& ma, const Material& mb,
-                    const S* Ya, const S* Yb, const Water& w, S* R) {
+                    const S* Ya, const S* Yb, const Angle<S>& aa, const Angle<S>& ab, const Water& w, S* R) {
   using std::cos;
   using std::sin;
   S Fxa, Fza, Fxb, Fzb;
-  internalForce(ma, Ya, Fxa, Fza);
-  internalForce(mb, Yb, Fxb, Fzb);
+  internalForce(ma, Ya, aa, Fxa, Fza);
+  internalForce(mb, Yb, ab, Fxb, Fzb);
   S Px = S(0.0) + 0.0 * Ya[EPS], Pz = S(0.0) + 0.0 * Ya[EPS];
   S Vx, Vz;
-  globalVelocity(Ya, Vx, Vz);
+  globalVelocity(Ya, aa, Vx, Vz);
   const S phi = 0.5 * (Ya[PHI] + Yb[PHI]);
   const S c = cos(phi), s = sin(phi);
   for (std::size_t k : iv.bodies) {
@@ -170,34 +186,47 @@ void junctionForces(const Problem& p, const MeshInterval& iv, const Material& ma
   R[0] = Fxb - Fxa + Px;
   R[1] = Fzb - Fza + Pz;
 }
-
-/// Junction inertia (rows 0-1): minus mass times acceleration of the bodies there.
 template <class S>
-void junctionInertia(const Problem& p, const MeshInterval& iv, const S* Ya, const S* Yda, S* R) {
-  using std::cos;
-  using std::sin;
+void junctionForces(const Problem& p, const MeshInterval& iv, const Material& ma, const Material& mb,
+                    const S* Ya, const S* Yb, const Water& w, S* R) {
+  junctionForces(p, iv, ma, mb, Ya, Yb, angleOf(Ya), angleOf(Yb), w, R);
+}
+
+/// Junction inertia (rows 0-1): minus mass times acceleration of the bodies there, with
+/// aa = angleOf(Ya).
+template <class S>
+void junctionInertia(const Problem& p, const MeshInterval& iv, const S* Ya, const Angle<S>& aa, const S* Yda, S* R) {
   double mass = 0.0;
   for (std::size_t k : iv.bodies) mass += p.bodies[k].mass + p.bodies[k].added_mass;
   // Acceleration of node a: (du/dt - v dphi/dt) t + (dv/dt + u dphi/dt) n.
-  const S c = cos(Ya[PHI]), s = sin(Ya[PHI]);
+  const S& c = aa.c;
+  const S& s = aa.s;
   const S at = Yda[U] - Ya[V] * Yda[PHI], an = Yda[V] + Ya[U] * Yda[PHI];
   R[0] = -mass * (at * s + an * c);
   R[1] = -mass * (at * c - an * s);
 }
+template <class S>
+void junctionInertia(const Problem& p, const MeshInterval& iv, const S* Ya, const S* Yda, S* R) {
+  junctionInertia(p, iv, Ya, angleOf(Ya), Yda, R);
+}
 
 /// Junction rows that hold at the new time level (rows 2-7): moment-free pin on both sides,
-/// coincident positions, equal global velocities.
+/// coincident positions, equal global velocities; aa = angleOf(Ya), ab = angleOf(Yb).
 template <class S>
-void junctionConstraints(const S* Ya, const S* Yb, S* R) {
+void junctionConstraints(const S* Ya, const S* Yb, const Angle<S>& aa, const Angle<S>& ab, S* R) {
   S Vxa, Vza, Vxb, Vzb;
-  globalVelocity(Ya, Vxa, Vza);
-  globalVelocity(Yb, Vxb, Vzb);
+  globalVelocity(Ya, aa, Vxa, Vza);
+  globalVelocity(Yb, ab, Vxb, Vzb);
   R[2] = Ya[OMEGA];
   R[3] = Yb[OMEGA];
   R[4] = Vxb - Vxa;
   R[5] = Vzb - Vza;
   R[6] = Yb[X] - Ya[X];
   R[7] = Yb[Z] - Ya[Z];
+}
+template <class S>
+void junctionConstraints(const S* Ya, const S* Yb, S* R) {
+  junctionConstraints(Ya, Yb, angleOf(Ya), angleOf(Yb), R);
 }
 
 }  // namespace eq2dyn
