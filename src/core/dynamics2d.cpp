@@ -91,17 +91,17 @@ struct DynamicSolver2D::Impl {
   Water waterAt(int j, double x, double z) const {
     Water w;
     double ux, uy;
-    current.at(z, ux, uy);
-    w.wx = ux;
     w.z = z;
     if (current.size() > 1) {
       // Slope of the piecewise-linear profile (exact inside a table interval), as in statics.
       constexpr double kDz = 1e-6;  // [m]
-      double up, um, vy;
-      current.at(z + kDz, up, vy);
-      current.at(z - kDz, um, vy);
+      double up, um;
+      current.atAndAround(z, kDz, ux, uy, up, um);
       w.dwx_dz = (up - um) / (2.0 * kDz);
+    } else {
+      current.at(z, ux, uy);
     }
+    w.wx = ux;
     if (!wave_cache.empty() && z <= 0.0) {
       double vx, vz;
       wave_cache.velocity(static_cast<std::size_t>(j), x, z, vx, vz);  // WaveField::velocity(x, 0, z, t)
@@ -312,8 +312,8 @@ class DynamicStepSystem : public NewtonSystem {
               for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
           continue;
         }
-        // Junction (pin) rows: few, left to automatic differentiation (only their non-zero
-        // entries written); in double when only the residual is asked for.
+        // Junction (pin) rows: few, left to automatic differentiation; in double when only the
+        // residual is asked for.
         if (J) {
           AD16 r[N];
           junctionRows(j, iv, Y, c1, c0, r);
@@ -408,7 +408,8 @@ class DynamicStepSystem : public NewtonSystem {
     }
     const Water& wa = water_[static_cast<std::size_t>(j)];
     // cos, sin of the angles of nodes a and b (now) and of node a (at the previous level) from
-    // the nodes' tables, with the derivatives cos() and sin() give them (eqs.: angleOf).
+    // the nodes' tables, with the derivatives cos() and sin() give them (angleOf,
+    // equations2d_dynamic.hpp; test_dynamic_interval checks the bits).
     const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
     const auto angle = [](const S& phi, double c, double s) -> Angle<S> {
       if constexpr (std::is_same_v<S, double>) {

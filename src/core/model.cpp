@@ -1,6 +1,7 @@
 #include "mooring_dynamics/core/model.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <sstream>
 
@@ -195,6 +196,41 @@ CurrentProfile::CurrentProfile(const std::vector<CurrentPoint>& table) {
 }
 
 void CurrentProfile::at(double z, double& ux, double& uy) const { interpolateCurrent(*this, z, false, ux, uy); }
+
+void CurrentProfile::atAndAround(double z, double dz, double& ux, double& uy, double& ux_above,
+                                 double& ux_below) const {
+  const std::size_t n = depth_.size();
+  // Interval i of interpolateCurrent's search for depth d: depth[i-1] < d <= depth[i], inside
+  // the table (d > depth[0], d < depth[n-1]); SIZE_MAX when d takes an end's value.
+  auto intervalOf = [&](double d) -> std::size_t {
+    if (n < 2 || d <= depth_[0] || d >= depth_[n - 1]) return SIZE_MAX;
+    std::size_t i = 1;
+    while (d > depth_[i]) ++i;
+    return i;
+  };
+  const double d = std::max(0.0, -z);
+  const std::size_t i = intervalOf(d);
+  if (i == SIZE_MAX) {
+    at(z, ux, uy);
+  } else {
+    const double w = (d - depth_[i - 1]) / (depth_[i] - depth_[i - 1]);
+    ux = ux_[i - 1] + w * (ux_[i] - ux_[i - 1]);
+    uy = uy_[i - 1] + w * (uy_[i] - uy_[i - 1]);
+  }
+  // A neighbour in the same interval: interpolateCurrent's arithmetic; else its own search.
+  auto eastAt = [&](double zq) {
+    const double dq = std::max(0.0, -zq);
+    if (i != SIZE_MAX && dq > depth_[i - 1] && dq <= depth_[i] && dq < depth_[n - 1]) {
+      const double w = (dq - depth_[i - 1]) / (depth_[i] - depth_[i - 1]);
+      return ux_[i - 1] + w * (ux_[i] - ux_[i - 1]);
+    }
+    double e, north;
+    at(zq, e, north);
+    return e;
+  };
+  ux_above = eastAt(z + dz);
+  ux_below = eastAt(z - dz);
+}
 
 void CurrentProfile::gradientAt(double z, double& dux_dz, double& duy_dz) const {
   interpolateCurrent(*this, z, true, dux_dz, duy_dz);

@@ -594,3 +594,28 @@ TEST(Validation, SolverOptions) {
   EXPECT_TRUE(contains(o.validate(), "solver.static.R1"));
   EXPECT_TRUE(contains(o.validate(), "1.01"));
 }
+
+// atAndAround (one search for the 2-D solver's value and finite-difference slope) gives what
+// three calls of at() give, bit for bit: through every table point, just either side of each
+// (a neighbour in the next interval), at the held ends and above the surface.
+TEST(Environment, CurrentProfileAtAndAroundIsThreeLookUpsBitForBit) {
+  const std::vector<CurrentPoint> table = {{0.0, 0.70, 0.0}, {50.0, 0.63, 0.3}, {100.0, 0.56, 0.0},
+                                           {300.0, 0.25, 1.0}, {1860.0, 0.12, 0.0}};
+  const CurrentProfile profile(table);
+  constexpr double kDz = 1e-6;  // [m], as the 2-D solver
+  std::vector<double> zs = {2.0, 0.0, -1e-7, -1e-6, -1860.0, -1900.0};
+  for (double z = 0.0; z >= -1870.0; z -= 12.5) zs.push_back(z);
+  for (const CurrentPoint& p : table)
+    for (double off : {-2e-6, -1e-6, -5e-7, 0.0, 5e-7, 1e-6, 2e-6}) zs.push_back(-p.depth + off);
+  for (double z : zs) {
+    double ux, uy, up, um, ex, ey, eu, ed, unused;
+    profile.atAndAround(z, kDz, ux, uy, up, um);
+    profile.at(z, ex, ey);
+    profile.at(z + kDz, eu, unused);
+    profile.at(z - kDz, ed, unused);
+    EXPECT_EQ(ux, ex) << "z " << z;
+    EXPECT_EQ(uy, ey) << "z " << z;
+    EXPECT_EQ(up, eu) << "z " << z;
+    EXPECT_EQ(um, ed) << "z " << z;
+  }
+}

@@ -81,6 +81,9 @@ class CurrentProfile {
   void at(double z, double& ux, double& uy) const;
   /// Its vertical gradient d(ux, uy)/dz [1/s].
   void gradientAt(double z, double& dux_dz, double& duy_dz) const;
+  /// at(z) and the east components at z + dz and z - dz [m/s] (dz > 0 [m]) with one search of
+  /// the table: the same values bit for bit as three calls of at().
+  void atAndAround(double z, double dz, double& ux, double& uy, double& ux_above, double& ux_below) const;
   std::size_t size() const { return depth_.size(); }
   /// The table's depth [m] and velocity components [m/s] at point i.
   double depth(std::size_t i) const { return depth_[i]; }
