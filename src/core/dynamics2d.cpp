@@ -534,7 +534,7 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
   {
     // In the units of one component's sum (measured on A.2, one thread): a node's water without
-    // the sum (three look-ups in the current table, the cache's bookkeeping), and its rates and
+    // the sum (the current table's look-ups, three then, the cache's bookkeeping), and its rates and
     // angles, which stay split at the meeting node. A.2 at 0.1 s, timed on one thread: the water
     // phase took 0.71 s in the upper half against 0.34 s in the lower; split at node 198 of
     // 274 instead of 137, 0.55 and 0.55 s.

@@ -87,7 +87,7 @@ void ForkJoin::loop() {
   }
 }
 
-int balancedSplit(const std::vector<double>& cost) {
+int balancedSplit(const std::vector<double>& cost, double first_extra) {
   const int n = static_cast<int>(cost.size());
   if (n < 2) return 0;
   double total = 0.0;
@@ -96,7 +96,7 @@ int balancedSplit(const std::vector<double>& cost) {
   double best_gap = std::numeric_limits<double>::infinity(), below = 0.0;
   for (int s = 1; s < n; ++s) {
     below += cost[static_cast<std::size_t>(s - 1)];
-    const double gap = std::abs(below - (total - below));
+    const double gap = std::abs(first_extra + below - (total - below));
     if (gap < best_gap) {
       best_gap = gap;
       best = s;

@@ -127,43 +127,61 @@ double Environment::seabedSlope(double x) const {
 
 namespace {
 
-/// The current table's interpolation, shared by Environment and CurrentProfile: the table's
-/// size(), depth(i) [m] and comp(i, cx, cy) [m/s], linear in depth between its points and held
-/// beyond the first and last. With `slope`, the vertical gradient d(ux, uy)/dz [1/s] instead:
-/// that of the interval interpolated in (see Environment::currentGradientAt).
+/// The interval of a current table (size(), depth(i) [m], comp(i, cx, cy) [m/s]) that depth d
+/// interpolates in: i with depth(i-1) < d <= depth(i), d strictly inside the table; 0 when d
+/// takes an end's value (and for tables of fewer than two points).
+template <class Table>
+std::size_t valueInterval(const Table& table, double d) {
+  const std::size_t n = table.size();
+  if (n < 2 || d <= table.depth(0) || d >= table.depth(n - 1)) return 0;
+  std::size_t i = 1;
+  while (d > table.depth(i)) ++i;
+  return i;
+}
+
+/// Whether valueInterval(table, d) is i > 0, without the search.
+template <class Table>
+bool inValueInterval(const Table& table, std::size_t i, double d) {
+  return d > table.depth(i - 1) && d <= table.depth(i) && d < table.depth(table.size() - 1);
+}
+
+/// The velocity components (not speed and direction) at depth d, linear in interval i.
+template <class Table>
+void interpolateIn(const Table& table, std::size_t i, double d, double& ux, double& uy) {
+  double ax, ay, bx, by;
+  table.comp(i - 1, ax, ay);
+  table.comp(i, bx, by);
+  const double w = (d - table.depth(i - 1)) / (table.depth(i) - table.depth(i - 1));
+  ux = ax + w * (bx - ax);
+  uy = ay + w * (by - ay);
+}
+
+/// The current table's interpolation, shared by Environment and CurrentProfile: linear in depth
+/// between its points and held beyond the first and last. With `slope`, the vertical gradient
+/// d(ux, uy)/dz [1/s] instead: that of the interval interpolated in, the lower one at the last
+/// point (see Environment::currentGradientAt).
 template <class Table>
 void interpolateCurrent(const Table& table, double z, bool slope, double& ux, double& uy) {
   ux = uy = 0.0;
   const std::size_t n = table.size();
   if (n == 0 || (slope && n < 2)) return;
   const double d = std::max(0.0, -z);
-  if (d <= table.depth(0) || n == 1) {
-    if (!slope) table.comp(0, ux, uy);
+  if (!slope) {
+    const std::size_t i = valueInterval(table, d);
+    if (i > 0) interpolateIn(table, i, d, ux, uy);
+    else table.comp(n == 1 || d <= table.depth(0) ? 0 : n - 1, ux, uy);
     return;
   }
-  if (d >= table.depth(n - 1) && !(slope && d == table.depth(n - 1))) {
-    if (!slope) table.comp(n - 1, ux, uy);
-    return;
-  }
-  // d in (depth[i-1], depth[i]] uses interval i.
-  for (std::size_t i = 1; i < n; ++i) {
-    if (d <= table.depth(i)) {
-      double ax, ay, bx, by;
-      table.comp(i - 1, ax, ay);
-      table.comp(i, bx, by);
-      if (slope) {  // du/dz = -du/dd: depth grows downward, z upward
-        const double dd = table.depth(i) - table.depth(i - 1);  // > 0 (validated)
-        ux = -(bx - ax) / dd;
-        uy = -(by - ay) / dd;
-        return;
-      }
-      // Interpolate the velocity components (not speed and direction) between table points.
-      const double w = (d - table.depth(i - 1)) / (table.depth(i) - table.depth(i - 1));
-      ux = ax + w * (bx - ax);
-      uy = ay + w * (by - ay);
-      return;
-    }
-  }
+  if (d <= table.depth(0) || d > table.depth(n - 1)) return;
+  // d in (depth[i-1], depth[i]] uses interval i; du/dz = -du/dd (depth grows downward, z upward).
+  std::size_t i = 1;
+  while (d > table.depth(i)) ++i;
+  double ax, ay, bx, by;
+  table.comp(i - 1, ax, ay);
+  table.comp(i, bx, by);
+  const double dd = table.depth(i) - table.depth(i - 1);  // > 0 (validated)
+  ux = -(bx - ax) / dd;
+  uy = -(by - ay) / dd;
 }
 
 /// Environment::current as interpolateCurrent's table: components from speed and direction.
@@ -199,33 +217,16 @@ void CurrentProfile::at(double z, double& ux, double& uy) const { interpolateCur
 
 void CurrentProfile::atAndAround(double z, double dz, double& ux, double& uy, double& ux_above,
                                  double& ux_below) const {
-  const std::size_t n = depth_.size();
-  // Interval i of interpolateCurrent's search for depth d: depth[i-1] < d <= depth[i], inside
-  // the table (d > depth[0], d < depth[n-1]); SIZE_MAX when d takes an end's value.
-  auto intervalOf = [&](double d) -> std::size_t {
-    if (n < 2 || d <= depth_[0] || d >= depth_[n - 1]) return SIZE_MAX;
-    std::size_t i = 1;
-    while (d > depth_[i]) ++i;
-    return i;
-  };
   const double d = std::max(0.0, -z);
-  const std::size_t i = intervalOf(d);
-  if (i == SIZE_MAX) {
-    at(z, ux, uy);
-  } else {
-    const double w = (d - depth_[i - 1]) / (depth_[i] - depth_[i - 1]);
-    ux = ux_[i - 1] + w * (ux_[i] - ux_[i - 1]);
-    uy = uy_[i - 1] + w * (uy_[i] - uy_[i - 1]);
-  }
-  // A neighbour in the same interval: interpolateCurrent's arithmetic; else its own search.
+  const std::size_t i = valueInterval(*this, d);
+  if (i > 0) interpolateIn(*this, i, d, ux, uy);
+  else at(z, ux, uy);
+  // A neighbour in the same interval interpolates there; any other takes its own search.
   auto eastAt = [&](double zq) {
     const double dq = std::max(0.0, -zq);
-    if (i != SIZE_MAX && dq > depth_[i - 1] && dq <= depth_[i] && dq < depth_[n - 1]) {
-      const double w = (dq - depth_[i - 1]) / (depth_[i] - depth_[i - 1]);
-      return ux_[i - 1] + w * (ux_[i] - ux_[i - 1]);
-    }
     double e, north;
-    at(zq, e, north);
+    if (i > 0 && inValueInterval(*this, i, dq)) interpolateIn(*this, i, dq, e, north);
+    else at(zq, e, north);
     return e;
   };
   ux_above = eastAt(z + dz);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "mooring_dynamics/core/fork_join.hpp"
 #include "mooring_dynamics/core/scalar.hpp"
 #include "mooring_dynamics/core/waves.hpp"
 
@@ -340,23 +341,11 @@ void WaveVelocityCache::velocity3(std::size_t p, double x, double y, double z, d
 
 int balancedWaterSplit(const WaveVelocityCache& cache, const std::vector<double>& z, int meeting, double water_work,
                        double rest_work) {
-  const int n = static_cast<int>(z.size());
   if (meeting == 0 || cache.empty()) return meeting;
-  std::vector<double> upto(z.size() + 1, 0.0);  // water work of points [0, j)
-  for (std::size_t j = 0; j < z.size(); ++j)
-    upto[j + 1] = upto[j] + static_cast<double>(cache.componentsAt(z[j])) + water_work;
-  const double total = upto.back();
-  int best = meeting;
-  double best_gap = std::numeric_limits<double>::infinity();
-  for (int w = 1; w < n; ++w) {
-    const double first = upto[static_cast<std::size_t>(w)] + rest_work * meeting;
-    const double second = total - upto[static_cast<std::size_t>(w)] + rest_work * (n - meeting);
-    if (std::abs(first - second) < best_gap) {
-      best_gap = std::abs(first - second);
-      best = w;
-    }
-  }
-  return best;
+  std::vector<double> cost;  // water work of each point
+  for (double zj : z) cost.push_back(static_cast<double>(cache.componentsAt(zj)) + water_work);
+  const int n = static_cast<int>(z.size());
+  return balancedSplit(cost, rest_work * (meeting - (n - meeting)));
 }
 
 }  // namespace core

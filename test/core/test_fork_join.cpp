@@ -76,4 +76,7 @@ TEST(BalancedSplit, BalancesTheHalvesCosts) {
   EXPECT_EQ(balancedSplit({4.0, 1.0, 1.0, 1.0, 1.0}), 1);
   // Exact ties: the first.
   EXPECT_EQ(balancedSplit({1.0, 0.0, 1.0}), 1);
+  // Other work on the first thread moves the split down, on the second (negative) up.
+  EXPECT_EQ(balancedSplit(std::vector<double>(10, 1.0), 4.0), 3);
+  EXPECT_EQ(balancedSplit(std::vector<double>(10, 1.0), -4.0), 7);
 }

@@ -96,9 +96,10 @@ void inHalves(ForkJoin* fork, int m, int end, const F& f) {
 }
 
 /// Where to split n work items of costs cost[0 .. n) for inHalves(split, n, f): the split in
-/// [1, n) whose halves' costs, sum cost[0 .. split) and sum cost[split .. n), differ least (the
-/// first of equals); 0 (no split) for fewer than two items. Costs are in any one unit, >= 0.
-int balancedSplit(const std::vector<double>& cost);
+/// [1, n) whose halves' costs, first_extra + sum cost[0 .. split) (the first thread's other
+/// work, which may be negative: the second's) and sum cost[split .. n), differ least (the first
+/// of equals); 0 (no split) for fewer than two items. Costs are in any one unit, >= 0.
+int balancedSplit(const std::vector<double>& cost, double first_extra = 0.0);
 
 }  // namespace core
 }  // namespace mooring_dynamics
