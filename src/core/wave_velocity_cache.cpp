@@ -77,8 +77,8 @@ MD_WAVE_SIMD_CLONES void componentSums(const double* __restrict coef, double* __
                                        double dx, double dz, double* out) {
   using C = WaveVelocityCache;
   constexpr std::size_t G = C::kGroup;  // one row of a group
-  Lane sx[6], sz[6];
-  for (int q = 0; q < 6; ++q) sx[q] = sz[q] = MD_LOAD(coef) * 0.0;
+  Lane sx[6], sz[6], g3 = MD_LOAD(coef) * 0.0;
+  for (int q = 0; q < 6; ++q) sx[q] = sz[q] = g3;
   for (std::size_t i = 0; i < groups * G; i += kLanes) {
     // Lanes [i, i + kLanes) of group i / kGroup: rows of kGroup components.
     const double* c = coef + i / C::kGroup * C::kCoefGroup + i % C::kGroup;
@@ -90,6 +90,7 @@ MD_WAVE_SIMD_CLONES void componentSums(const double* __restrict coef, double* __
     const Lane Ep = MD_LOAD(st + C::kRowEp * G) * (ev + od);
     const Lane Em = MD_LOAD(st + C::kRowEm * G) * (ev - od);
     const Lane ch = Ep + Em, sh = Ep - Em;
+    g3 += MD_LOAD(c + C::kRowG3 * G) * ch;  // the bound on the third derivatives at the new reference
     // cos, sin of kx dx: the phase B carried from the reference abscissa, then A added.
     const Lane d = MD_LOAD(c + C::kRowKx * G) * dx;
     Lane cd, sd;
@@ -123,6 +124,46 @@ MD_WAVE_SIMD_CLONES void componentSums(const double* __restrict coef, double* __
     out[q] = total(sx[q]);
     out[6 + q] = total(sz[q]);
   }
+  out[12] = total(g3);
+}
+
+/// The twelve sums at the point's reference itself (no displacement: no Taylor series, the
+/// reference values unchanged) at the current time: what componentSums gives for dx = dz = 0 at
+/// under half the operations per component.
+MD_WAVE_SIMD_CLONES void referenceSums(const double* __restrict coef, const double* __restrict state, std::size_t groups,
+                                       double* out) {
+  using C = WaveVelocityCache;
+  constexpr std::size_t G = C::kGroup;
+  Lane sx[6], sz[6];
+  for (int q = 0; q < 6; ++q) sx[q] = sz[q] = MD_LOAD(coef) * 0.0;
+  for (std::size_t i = 0; i < groups * G; i += kLanes) {
+    const double* c = coef + i / C::kGroup * C::kCoefGroup + i % C::kGroup;
+    const double* st = state + i / C::kGroup * C::kStateGroup + i % C::kGroup;
+    const Lane Ep = MD_LOAD(st + C::kRowEp * G), Em = MD_LOAD(st + C::kRowEm * G);
+    const Lane ch = Ep + Em, sh = Ep - Em;
+    const Lane cb = MD_LOAD(st + C::kRowCosB * G), sb = MD_LOAD(st + C::kRowSinB * G);
+    const Lane ca = MD_LOAD(c + C::kRowCosA * G), sa = MD_LOAD(c + C::kRowSinA * G);
+    const Lane cth = cb * ca - sb * sa, sth = sb * ca + cb * sa;
+    const Lane p1 = ch * cth, p2 = ch * sth, p3 = sh * cth, p4 = sh * sth;
+    const double* cx = c + C::kRowCx * G;
+    const double* cz = c + C::kRowCz * G;
+    sx[0] += MD_LOAD(cx + 0 * G) * p1;
+    sx[1] -= MD_LOAD(cx + 1 * G) * p2;
+    sx[2] += MD_LOAD(cx + 2 * G) * p3;
+    sx[3] -= MD_LOAD(cx + 3 * G) * p1;
+    sx[4] -= MD_LOAD(cx + 4 * G) * p4;
+    sx[5] += MD_LOAD(cx + 5 * G) * p1;
+    sz[0] += MD_LOAD(cz + 0 * G) * p4;
+    sz[1] += MD_LOAD(cz + 1 * G) * p3;
+    sz[2] += MD_LOAD(cz + 2 * G) * p2;
+    sz[3] -= MD_LOAD(cz + 3 * G) * p4;
+    sz[4] += MD_LOAD(cz + 4 * G) * p1;
+    sz[5] += MD_LOAD(cz + 5 * G) * p4;
+  }
+  for (int q = 0; q < 6; ++q) {
+    out[q] = total(sx[q]);
+    out[6 + q] = total(sz[q]);
+  }
 }
 
 #undef MD_LOAD
@@ -132,8 +173,9 @@ MD_WAVE_SIMD_CLONES void componentSums(const double* __restrict coef, double* __
 
 }  // namespace
 
-WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points, bool horizontal_plane)
-    : field_(field), plane_(horizontal_plane) {
+WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points, bool horizontal_plane,
+                                     bool across_times)
+    : field_(field), plane_(horizontal_plane), across_times_(across_times) {
   if (empty()) return;
   const WaveField& f = *field_;
   nc_ = f.components_.size();
@@ -216,6 +258,7 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points,
     k_max_ = std::max(k_max_, c.k);
     kx_upto_[i] = kx_max_;
     k_upto_[i] = k_max_;
+    coef[coefIndex(i, kRowG3)] = c.A * std::abs(c.aw) * c.k * c.k * c.k;
     coef[coefIndex(i, kRowK)] = c.k;
     coef[coefIndex(i, kRowKx)] = c.kx;
     const double ax = c.A * c.aw * c.cd, az = c.A * c.aw;
@@ -273,9 +316,22 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
   if (zc < f.z_all_negligible_) return;
   Exact& ex = exact_[p];
   const bool inside = z < 0.0 && z > -f.depth_;  // not clamped: the expansion holds
-  if (inside && ex.valid && ex.t == t_) {
+  double* const st = stateData() + p * (np_ / kGroup * kStateGroup);  // point p's groups
+  if (inside && ex.valid) {
     const double dx = x - ex.x, dz = z - ex.z;
-    if (dx * dx + dz * dz <= lin_radius_ * lin_radius_) {  // linearRadius: second-order Taylor
+    if (dx * dx + dz * dz <= ex.radius * ex.radius && (ex.t == t_ || across_times_)) {
+      // Within the point's expansion radius of its reference: the second-order Taylor
+      // expansion about it (expansionRadius), with the sums there at this time first if they
+      // are of another (the reference's values, cos and sin of B and E+-, do not change).
+      if (ex.t != t_) {
+        double sums[12];
+        referenceSums(coefData(), st, ex.components / kGroup, sums);
+        ex.t = t_;
+        for (int q = 0; q < 6; ++q) {
+          ex.vx[q] = sums[q] * ramp_;
+          ex.vz[q] = sums[6 + q] * ramp_;
+        }
+      }
       auto taylor = [dx, dz](const double* v) {
         return v[0] + v[1] * dx + v[2] * dz + 0.5 * v[3] * dx * dx + v[4] * dx * dz + 0.5 * v[5] * dz * dz;
       };
@@ -284,20 +340,23 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
       return;
     }
   }
-  double* const st = stateData() + p * (np_ / kGroup * kStateGroup);  // point p's groups
+  // The exact sum at (x, zc), which becomes the point's reference. The components summed: those
+  // a point up to kMaxExpansionRadius higher sees, so that every one left out stays below the
+  // negligible velocity within the expansion radius.
+  const std::size_t n = seenAt(std::min(0.0, zc + kMaxExpansionRadius));
+  const double kx_n = n > 0 ? kx_upto_[n - 1] : 0.0, k_n = n > 0 ? k_upto_[n - 1] : 0.0;
   // The reference: moved to the point by every exact evaluation (componentSums), computed
   // afresh when the point jumped beyond the Taylor series' reach (also when it is NaN) and
   // every kResync moves, so that the rounding of the carried values does not build up.
   constexpr int kResync = 512;  // rounding of 512 moves: ~1e-13 relative at worst (test_wave_velocity_cache)
   double dx = x - x_ref_[p], dz = zc - z_ref_[p];
-  if (!(std::abs(dx) * kx_max_ <= kTaylorRadius && std::abs(dz) * k_max_ <= kTaylorRadius) || moves_[p] >= kResync) {
+  if (!(std::abs(dx) * kx_n <= kTaylorRadius && std::abs(dz) * k_n <= kTaylorRadius) || moves_[p] >= kResync) {
     x_ref_[p] = x;
     z_ref_[p] = zc;
     dx = dz = 0.0;
     valid_[p] = 0;
     moves_[p] = 0;
   }
-  const std::size_t n = seenAt(zc);
   // Components [valid, n) have no reference values yet (or stale ones): compute them there.
   for (std::size_t i = valid_[p]; i < n; ++i) {
     sinCos(kx_[i] * x_ref_[p], st[stateIndex(i, kRowSinB)], st[stateIndex(i, kRowCosB)]);
@@ -305,10 +364,10 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
     st[stateIndex(i, kRowEm)] = std::exp(-k_[i] * (z_ref_[p] + om_[i]));
   }
   valid_[p] = std::max(valid_[p], n);
-  double sums[12];
+  double sums[13];
   // The shorter series where the largest argument among the components summed allows it
   // (a deep point sees long waves only, and moves little in a step).
-  if (n == 0 || std::max(std::abs(dx) * kx_upto_[n - 1], std::abs(dz) * k_upto_[n - 1]) <= kShortTaylorRadius)
+  if (n == 0 || std::max(std::abs(dx) * kx_n, std::abs(dz) * k_n) <= kShortTaylorRadius)
     componentSums<7>(coefData(), st, n / kGroup, dx, dz, sums);
   else
     componentSums<11>(coefData(), st, n / kGroup, dx, dz, sums);
@@ -325,10 +384,30 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
   ex.t = t_;
   ex.x = x;
   ex.z = z;
+  ex.components = n;
+  ex.radius = expansionRadiusFor(sums[12], k_n);
   for (int q = 0; q < 6; ++q) {
     ex.vx[q] = sums[q] * ramp_;
     ex.vz[q] = sums[6 + q] * ramp_;
   }
+}
+
+double WaveVelocityCache::expansionRadiusFor(double g3, double k_n) {
+  // Along a unit direction each derivative of a component brings a factor of at most k_i
+  // (|k_i cos(theta_i)| <= k_i; z turns ch into sh and back, |sh| <= ch), so the third
+  // derivatives at the reference are below 2^{3/2} G3 with G3 = sum_i A_i a_i omega_i k_i^3 ch_i
+  // (g3, the sum at the reference; ramp <= 1), and within a distance r of it below
+  // 2^{3/2} G3 e^{k_n r} (the depth factors grow by at most e^{k_i r}). The remainder of the
+  // second-order expansion over r is then below 2^{3/2} G3 e^{k_n r} r^3 / 6 <= kLinearTolerance
+  // for the r below (r0 without the growth, which bounds r; then the growth at r0).
+  const double third = 2.0 * std::sqrt(2.0) * g3 / 6.0;
+  if (!(third > 0.0)) return kMaxExpansionRadius;
+  const double r0 = std::min(kMaxExpansionRadius, std::cbrt(kLinearTolerance / third));
+  return std::min(r0, std::cbrt(kLinearTolerance / (third * std::exp(k_n * r0))));
+}
+
+double WaveVelocityCache::expansionRadius(std::size_t p) const {
+  return p < exact_.size() && exact_[p].valid ? exact_[p].radius : 0.0;
 }
 
 void WaveVelocityCache::velocity3(std::size_t p, double x, double y, double z, double& vx, double& vy, double& vz) {

@@ -14,6 +14,10 @@ using namespace mooring_dynamics::core;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+/// Components below the negligible velocity at a point (1e-12 m/s each) that the cache sums
+/// there (those seen up to kMaxExpansionRadius higher) and WaveField::velocity leaves out: at
+/// most one per component of a 400-component sea [m/s].
+constexpr double kNegligibleSum = 400 * 1e-12;
 constexpr double kG = 9.81;
 
 WaveSpec regular(double height, double period) {
@@ -41,13 +45,14 @@ WaveSpec storm(double direction) {
 // The per-point cache of the dynamic solver against WaveField::velocity: a random sea in deep
 // water (1860 m, every component in the exponential branch), one in 60 m (hyperbolic branch),
 // with a ramp, at points that creep (Taylor carry) and jump (refresh) between evaluations,
-// above and below the surface, over many times. Same sums up to rounding.
+// above and below the surface, over many times. Without expansions across times: the same sums
+// up to rounding.
 TEST(Waves, VelocityCacheMatchesDirectEvaluation) {
   constexpr double kRelTol = 1e-12;   // of the largest velocity: reordered rounding only
   for (double depth : {1860.0, 60.0}) {
     const WaveField field(storm(0.3), depth, 9.81);
     constexpr std::size_t kPoints = 4;
-    WaveVelocityCache cache(&field, kPoints);
+    WaveVelocityCache cache(&field, kPoints, false, false);  // exact at every new time
     ASSERT_FALSE(cache.empty());
     const double x0[kPoints] = {0.0, 150.0, -40.0, 900.0};
     const double z0[kPoints] = {-1.0, -15.0, 0.5, -0.5 * depth};
@@ -63,8 +68,8 @@ TEST(Waves, VelocityCacheMatchesDirectEvaluation) {
         cache.velocity(p, x, z, vx, vz);
         field.velocity(x, 0.0, z, t, ex, ey, ez);
         const double scale = std::max({1e-3, std::abs(ex), std::abs(ez)});
-        EXPECT_NEAR(vx, ex, kRelTol * scale) << "depth " << depth << " point " << p << " t " << t;
-        EXPECT_NEAR(vz, ez, kRelTol * scale) << "depth " << depth << " point " << p << " t " << t;
+        EXPECT_NEAR(vx, ex, kRelTol * scale + kNegligibleSum) << "depth " << depth << " point " << p << " t " << t;
+        EXPECT_NEAR(vz, ez, kRelTol * scale + kNegligibleSum) << "depth " << depth << " point " << p << " t " << t;
         ++compared;
       }
     }
@@ -74,10 +79,11 @@ TEST(Waves, VelocityCacheMatchesDirectEvaluation) {
   EXPECT_TRUE(none.empty());
 }
 
-// Within linearRadius of a point's last exact evaluation at the same time the cache returns the
-// first-order expansion, whose error is bounded by WaveVelocityCache::kLinearTolerance; beyond
-// it, or at another time, the exact sum. Both depth branches, points below, at and above the
-// surface, displacements in all directions.
+// Within a point's expansion radius of its last exact evaluation at the same time the cache
+// returns the second-order expansion, whose error is bounded by
+// WaveVelocityCache::kLinearTolerance; beyond it, or at another time (without expansions across
+// times), the exact sum. Both depth branches, points below, at and above the surface,
+// displacements in all directions.
 TEST(Waves, VelocityCacheLinearizesWithinItsRadius) {
   constexpr double kRoundTol = 1e-12;  // of the largest velocity: reordered rounding only
   for (double depth : {1860.0, 60.0}) {
@@ -89,11 +95,11 @@ TEST(Waves, VelocityCacheLinearizesWithinItsRadius) {
     spec.direction = 0.3;
     const WaveField field(spec, depth, 9.81);
     const double z0s[] = {-0.3, -12.0, -150.0, 0.0};
-    WaveVelocityCache cache(&field, 4);
-    const double r = cache.linearRadius();
+    WaveVelocityCache cache(&field, 4, false, false);
+    const double r_global = cache.linearRadius();
     // The radius is what makes the linearization pay: a Newton iteration moves a node by less.
-    EXPECT_GT(r, 1e-4) << "depth " << depth;
-    EXPECT_LT(r, 1.0) << "depth " << depth;
+    EXPECT_GT(r_global, 1e-4) << "depth " << depth;
+    EXPECT_LT(r_global, 1.0) << "depth " << depth;
     int linear = 0;
     for (int trial = 0; trial < 40; ++trial) {
       const double t = 3.1 + 0.5 * trial;
@@ -104,8 +110,19 @@ TEST(Waves, VelocityCacheLinearizesWithinItsRadius) {
         cache.velocity(p, x0, z0, vx, vz);  // exact: first evaluation at this time
         field.velocity(x0, 0.0, z0, t, ex, ey, ez);
         const double scale = std::max({1e-3, std::abs(ex), std::abs(ez)});
-        EXPECT_NEAR(vx, ex, kRoundTol * scale);
-        EXPECT_NEAR(vz, ez, kRoundTol * scale);
+        EXPECT_NEAR(vx, ex, kRoundTol * scale + kNegligibleSum);
+        EXPECT_NEAR(vz, ez, kRoundTol * scale + kNegligibleSum);
+        // The point's own radius: none outside the water column (above the surface, below the
+        // bottom); inside it at least the global bound's near the surface (within the depth
+        // factors' growth), larger with depth.
+        const double r = cache.expansionRadius(p);
+        if (z0 >= 0.0 || z0 <= -depth) {
+          EXPECT_EQ(r, 0.0);
+          continue;
+        }
+        EXPECT_GT(r, 0.8 * r_global) << "depth " << depth << " z " << z0;
+        EXPECT_LE(r, WaveVelocityCache::kMaxExpansionRadius);
+        if (depth > 1000.0 && z0 < -100.0) EXPECT_GT(r, 5.0 * r_global) << "z " << z0;
         // A displacement of 0.9 r in direction theta: linearized, within the bound.
         const double th = 0.37 * trial + 1.3 * p, d = 0.9 * r;
         const double x1 = x0 + d * std::cos(th), z1 = z0 + d * std::sin(th);
@@ -113,19 +130,78 @@ TEST(Waves, VelocityCacheLinearizesWithinItsRadius) {
         field.velocity(x1, 0.0, z1, t, ex, ey, ez);
         EXPECT_NEAR(vx, ex, WaveVelocityCache::kLinearTolerance + kRoundTol * scale) << "depth " << depth << " p " << p;
         EXPECT_NEAR(vz, ez, WaveVelocityCache::kLinearTolerance + kRoundTol * scale) << "depth " << depth << " p " << p;
-        if (std::abs(vx - ex) > kRoundTol * scale || std::abs(vz - ez) > kRoundTol * scale) ++linear;
+        if (std::abs(vx - ex) > kRoundTol * scale + kNegligibleSum || std::abs(vz - ez) > kRoundTol * scale + kNegligibleSum)
+          ++linear;
         // Beyond the radius (from the last exact point x0, z0): exact again.
         const double x2 = x0 + 3.0 * r * std::cos(th), z2 = z0 + 3.0 * r * std::sin(th);
         cache.velocity(p, x2, z2, vx, vz);
         field.velocity(x2, 0.0, z2, t, ex, ey, ez);
-        EXPECT_NEAR(vx, ex, kRoundTol * scale);
-        EXPECT_NEAR(vz, ez, kRoundTol * scale);
+        EXPECT_NEAR(vx, ex, kRoundTol * scale + kNegligibleSum);
+        EXPECT_NEAR(vz, ez, kRoundTol * scale + kNegligibleSum);
       }
     }
     // The expansion was used (it differs from the exact sum by more than rounding somewhere).
     EXPECT_GT(linear, 0) << "depth " << depth;
-    std::printf("depth %.0f m: linear radius %.3g m\n", depth, r);
+    std::printf("depth %.0f m: linear radius %.3g m\n", depth, r_global);
   }
+}
+
+// Expansions across times (the default): a node's reference stays put while the node moves within
+// its expansion radius of it, and the sums there are taken afresh at each new time. Nodes of a
+// deep line (1860 m, the A.2 storm, 400 components) from the surface down to 1500 m, each moving
+// on an orbit of its own over 60 s in steps of 0.1 s, and a second evaluation within the step
+// (a Newton iterate): every value within kLinearTolerance of the direct sum, most of the deep
+// evaluations made about a kept reference, and none of those near the surface, where the radius
+// is centimetres and the orbit metres.
+TEST(Waves, VelocityCacheExpandsAcrossTimes) {
+  constexpr double kRoundTol = 1e-12;  // of the largest velocity: reordered rounding only
+  WaveSpec spec = storm(0.0);
+  spec.components = 400;
+  const WaveField field(spec, 1860.0, kG);
+  const double z0[] = {-0.5, -5.0, -40.0, -150.0, -400.0, -800.0, -1500.0};
+  constexpr std::size_t kPoints = sizeof z0 / sizeof z0[0];
+  WaveVelocityCache cache(&field, kPoints);
+  double worst = 0.0;
+  int kept_deep = 0, deep = 0, kept_shallow = 0;
+  // The cache's rule, mirrored: about its reference within the radius (below the surface), else
+  // an exact sum that becomes the reference.
+  double x_ref[kPoints] = {}, z_ref[kPoints] = {};
+  for (int step = 0; step < 600; ++step) {
+    const double t = 0.1 * step;
+    cache.setTime(t);
+    for (std::size_t p = 0; p < kPoints; ++p) {
+      // Orbits shrinking with depth as the waves' do (4 m at the surface), plus a slow drift.
+      const double a = 4.0 * std::exp(z0[p] / 150.0) + 0.05;
+      for (int iterate = 0; iterate < 2; ++iterate) {
+        const double x = 10.0 * p + 0.002 * step + a * std::sin(0.4 * t + p) + 0.003 * iterate;
+        const double z = std::min(-0.1, z0[p] + a * std::cos(0.4 * t + p) - 0.002 * iterate);
+        const double r = cache.expansionRadius(p);
+        const bool kept = r > 0.0 && std::hypot(x - x_ref[p], z - z_ref[p]) <= r;
+        double vx, vz, ex, ey, ez;
+        cache.velocity(p, x, z, vx, vz);
+        field.velocity(x, 0.0, z, t, ex, ey, ez);
+        const double scale = std::max({1e-3, std::abs(ex), std::abs(ez)});
+        const double err = std::max(std::abs(vx - ex), std::abs(vz - ez));
+        EXPECT_LE(err, WaveVelocityCache::kLinearTolerance + kRoundTol * scale) << "p " << p << " t " << t;
+        if (kept) worst = std::max(worst, err);
+        else EXPECT_LE(err, kRoundTol * scale + kNegligibleSum) << "exact sum, p " << p << " t " << t;
+        if (!kept) {
+          x_ref[p] = x;
+          z_ref[p] = z;
+        }
+        if (iterate > 0) continue;  // (counted: the first evaluation at each time)
+        if (z0[p] <= -400.0) {
+          ++deep;
+          kept_deep += kept;
+        }
+        if (z0[p] >= -5.0) kept_shallow += kept;
+      }
+    }
+  }
+  EXPECT_GT(kept_deep, deep * 9 / 10);
+  EXPECT_EQ(kept_shallow, 0);
+  std::printf("largest difference %.2e m/s; deep evaluations about a kept reference: %d of %d\n", worst, kept_deep,
+              deep);
 }
 
 // A node that creeps for thousands of evaluations (its reference carried by the Taylor factors
@@ -143,7 +219,7 @@ TEST(Waves, VelocityCacheCarriedReferenceDoesNotDrift) {
   spec.tp = 16.0;
   spec.components = 400;
   const WaveField field(spec, 1860.0, 9.81);
-  WaveVelocityCache cache(&field, 1);
+  WaveVelocityCache cache(&field, 1, false, false);
   double worst = 0.0;
   for (int step = 0; step < 3000; ++step) {
     const double t = 0.1 * step;
@@ -173,7 +249,7 @@ TEST(Waves, VelocityCacheTaylorSeriesAtTheirRadii) {
   const double k = field.components()[0].k, aw = 1.0 * 2.0 * kPi / T;
   const double r7 = WaveVelocityCache::kShortTaylorRadius, r11 = WaveVelocityCache::kTaylorRadius;
   const double args[] = {0.99 * r7, 1.01 * r7, 0.5 * r11, 0.99 * r11};
-  WaveVelocityCache cache(&field, 1);
+  WaveVelocityCache cache(&field, 1, false, false);
   double t = 0.0, x = 3.0, z = -2.0;
   int evaluations = 0;
   for (double u : args) {
@@ -205,7 +281,7 @@ TEST(Waves, VelocityCacheInTheHorizontalPlaneMatchesDirectEvaluation) {
     for (double depth : {1860.0, 60.0}) {
       const WaveField field(storm(direction), depth, 9.81);
       constexpr std::size_t kPoints = 3;
-      WaveVelocityCache cache(&field, kPoints, true);
+      WaveVelocityCache cache(&field, kPoints, true, false);
       const double x0[kPoints] = {0.0, 150.0, -40.0}, y0[kPoints] = {0.0, -70.0, 25.0};
       const double z0[kPoints] = {-1.0, -15.0, 0.5};
       for (int step = 0; step < 40; ++step) {
@@ -219,9 +295,9 @@ TEST(Waves, VelocityCacheInTheHorizontalPlaneMatchesDirectEvaluation) {
           cache.velocity3(p, x, y, z, vx, vy, vz);
           field.velocity(x, y, z, t, ex, ey, ez);
           const double scale = std::max({1e-3, std::abs(ex), std::abs(ey), std::abs(ez)});
-          EXPECT_NEAR(vx, ex, kRelTol * scale) << "direction " << direction << " depth " << depth << " t " << t;
-          EXPECT_NEAR(vy, ey, kRelTol * scale) << "direction " << direction << " depth " << depth << " t " << t;
-          EXPECT_NEAR(vz, ez, kRelTol * scale) << "direction " << direction << " depth " << depth << " t " << t;
+          EXPECT_NEAR(vx, ex, kRelTol * scale + kNegligibleSum) << "direction " << direction << " depth " << depth << " t " << t;
+          EXPECT_NEAR(vy, ey, kRelTol * scale + kNegligibleSum) << "direction " << direction << " depth " << depth << " t " << t;
+          EXPECT_NEAR(vz, ez, kRelTol * scale + kNegligibleSum) << "direction " << direction << " depth " << depth << " t " << t;
           ++compared;
         }
       }

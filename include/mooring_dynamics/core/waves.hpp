@@ -96,15 +96,21 @@ class WaveField {
 /// kTaylorRadius, and after 512 moves). The value is WaveField::velocity(x, 0, z, t) up
 /// to rounding, with no transcendental function per component, point and evaluation, and the
 /// sum over the components is taken eight components at a time (SIMD where the compiler has it).
-/// Near a point's last exact evaluation at the same time the cache expands instead (see
-/// linearRadius).
+/// Within a point's expansion radius of its reference the cache returns the second-order Taylor
+/// expansion about it instead (expansionRadius), at the same time or, by default, at a later one:
+/// the sums at the reference are then taken afresh at that time, without the Taylor series that
+/// carry the reference (a deep node sees only long waves and stays within metres of it for many
+/// steps).
 class WaveVelocityCache {
  public:
   WaveVelocityCache() = default;
   /// For `points` points of `field` (which must outlive the cache): in the x-z plane (y = 0,
   /// velocity()), or with `horizontal_plane` anywhere (velocity3(); every component must then
   /// travel in the same direction, as those of WaveSpec do; std::invalid_argument otherwise).
-  WaveVelocityCache(const WaveField* field, std::size_t points, bool horizontal_plane = false);
+  /// With `across_times` false the expansion is used only at the time of the reference's last
+  /// sum: the first evaluation of a point at a time is then the exact sum (up to rounding).
+  WaveVelocityCache(const WaveField* field, std::size_t points, bool horizontal_plane = false,
+                    bool across_times = true);
   bool empty() const { return field_ == nullptr || field_->empty(); }
   /// Time of the following evaluations [s].
   void setTime(double t);
@@ -139,22 +145,37 @@ class WaveVelocityCache {
   /// derivatives are below 2^{3/2} G3 with G3 = sum_i a_i omega_i k_i^3 coth(k_i h), and the
   /// remainder over a distance d below 2^{3/2} G3 d^3 / 6 <= kLinearTolerance.
   double linearRadius() const { return lin_radius_; }
+  /// The radius [m] about point i's reference (its last exact evaluation) within which velocity()
+  /// returns the second-order expansion; 0 before the first exact evaluation and for a point
+  /// outside the water column. As linearRadius, with the components point i sums and their
+  /// depth factors there: 2^{3/2} G3_i e^{k_n r} r^3 / 6 <= kLinearTolerance with
+  /// G3_i = sum_i a_i omega_i k_i^3 (depth factor at the reference), k_n the largest k_i summed
+  /// (the growth of the depth factors over r); at most kMaxExpansionRadius. The sums take the
+  /// components seen up to kMaxExpansionRadius above the reference, so that those left out stay
+  /// below the negligible velocity (1e-12 m/s each) wherever the expansion is used.
+  double expansionRadius(std::size_t i) const;
+  static constexpr double kMaxExpansionRadius = 5.0;  ///< [m]: ~1e-7 m/s at 800 m in the A.2 storm
 
   /// Layout of the component sums' data: components in groups of kGroup (the SIMD width of
   /// the sums), each group a block of rows of kGroup values, so that a sum streams through two
   /// arrays (the constants and the point's state) instead of one per quantity. Constants per
   /// group (kCoefGroup values): k, k cos(theta), cos and sin of A, the six coefficients of vx and
-  /// the six of vz; state per point and group (kStateGroup values): cos and sin of B, E+, E-.
+  /// the six of vz, and a omega k^3 times the depth factors' denominator (G3 of expansionRadius); state per point and group (kStateGroup values): cos and sin of B, E+, E-.
   static constexpr std::size_t kGroup = 8;
-  enum CoefRow : std::size_t { kRowK, kRowKx, kRowCosA, kRowSinA, kRowCx, kRowCz = kRowCx + 6, kCoefRows = kRowCz + 6 };
+  enum CoefRow : std::size_t {
+    kRowK, kRowKx, kRowCosA, kRowSinA, kRowCx, kRowCz = kRowCx + 6, kRowG3 = kRowCz + 6, kCoefRows
+  };
   enum StateRow : std::size_t { kRowCosB, kRowSinB, kRowEp, kRowEm, kStateRows };
   static constexpr std::size_t kCoefGroup = kCoefRows * kGroup;
   static constexpr std::size_t kStateGroup = kStateRows * kGroup;
 
  private:
   std::size_t seenAt(double zc) const;  ///< components summed at a clamped, relevant elevation
+  /// expansionRadius from G3 at the reference and the largest k summed.
+  static double expansionRadiusFor(double g3, double k_n);
   const WaveField* field_ = nullptr;
   bool plane_ = false;                  ///< points anywhere: tables along the direction of travel
+  bool across_times_ = true;            ///< expansions at later times too (constructor)
   double direction_ = 0.0, cos_dir_ = 1.0, sin_dir_ = 0.0;  ///< that direction theta [rad]
   std::size_t nc_ = 0;                  ///< components
   std::size_t np_ = 0;                  ///< components padded to a multiple of 8 (zero terms)
@@ -189,11 +210,14 @@ class WaveVelocityCache {
   double* stateData() { return aligned(state_); }
   static std::size_t coefIndex(std::size_t i, std::size_t row) { return i / kGroup * kCoefGroup + row * kGroup + i % kGroup; }
   static std::size_t stateIndex(std::size_t i, std::size_t row) { return i / kGroup * kStateGroup + row * kGroup + i % kGroup; }
-  /// Last exact evaluation of each point inside the water column: time, position, and the
-  /// velocity with its first and second derivatives there: for vx then vz, the value, d/dx,
-  /// d/dz, d2/dx2, d2/dxdz, d2/dz2 [m/s, 1/s, 1/(m s)].
+  /// Each point's reference inside the water column (its last exact evaluation): position, the
+  /// expansion radius there and the components summed, and the time of the sums below: the
+  /// velocity with its first and second derivatives at the reference, for vx then vz the value,
+  /// d/dx, d/dz, d2/dx2, d2/dxdz, d2/dz2 [m/s, 1/s, 1/(m s)].
   struct Exact {
     double t = 0.0, x = 0.0, z = 0.0;
+    double radius = 0.0;         ///< expansionRadius [m]
+    std::size_t components = 0;  ///< summed at the reference (whole groups)
     double vx[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     double vz[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     bool valid = false;
