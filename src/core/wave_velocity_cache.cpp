@@ -32,7 +32,9 @@ typedef double Lane __attribute__((vector_size(64), aligned(8), may_alias));  //
 #define MD_LOAD(p) (*reinterpret_cast<const Lane*>(p))
 inline double total(const Lane& v) { return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7])); }
 constexpr std::size_t kLanes = 8;
+#define MD_WAVE_INLINE inline __attribute__((always_inline))
 #else
+#define MD_WAVE_INLINE inline
 typedef double Lane;
 #define MD_LOAD(p) (*(p))
 inline double total(const Lane& v) { return v; }
@@ -64,6 +66,30 @@ inline void taylorParts(const T& u, const T& u2, T& even, T& odd) {
     even = 1.0 + u2 * (1.0 / 2 + u2 * (1.0 / 24 + u2 * (1.0 / 720)));
     odd = u * (1.0 + u2 * (1.0 / 6 + u2 * (1.0 / 120 + u2 * (1.0 / 5040))));
   }
+}
+
+/// One lane group's terms of the twelve sums (WaveVelocityCache's order) from its depth factors
+/// ch, sh and the cos, sin of its phases at the point; c: the group's constants at the lanes.
+/// vx ~ ch cos(th), vz ~ sh sin(th); d/dx turns cos into -sin (times kx), d/dz ch into sh.
+MD_WAVE_INLINE void accumulate(const double* c, const Lane& ch, const Lane& sh, const Lane& cth, const Lane& sth,
+                               Lane* sx, Lane* sz) {
+  using C = WaveVelocityCache;
+  constexpr std::size_t G = C::kGroup;
+  const Lane p1 = ch * cth, p2 = ch * sth, p3 = sh * cth, p4 = sh * sth;
+  const double* cx = c + C::kRowCx * G;
+  const double* cz = c + C::kRowCz * G;
+  sx[0] += MD_LOAD(cx + 0 * G) * p1;
+  sx[1] -= MD_LOAD(cx + 1 * G) * p2;
+  sx[2] += MD_LOAD(cx + 2 * G) * p3;
+  sx[3] -= MD_LOAD(cx + 3 * G) * p1;
+  sx[4] -= MD_LOAD(cx + 4 * G) * p4;
+  sx[5] += MD_LOAD(cx + 5 * G) * p1;
+  sz[0] += MD_LOAD(cz + 0 * G) * p4;
+  sz[1] += MD_LOAD(cz + 1 * G) * p3;
+  sz[2] += MD_LOAD(cz + 2 * G) * p2;
+  sz[3] -= MD_LOAD(cz + 3 * G) * p4;
+  sz[4] += MD_LOAD(cz + 4 * G) * p1;
+  sz[5] += MD_LOAD(cz + 5 * G) * p4;
 }
 
 /// The twelve sums (WaveVelocityCache's order) over the first `groups` lane groups of kLanes
@@ -103,22 +129,7 @@ MD_WAVE_SIMD_CLONES void componentSums(const double* __restrict coef, double* __
     *reinterpret_cast<Lane*>(st + C::kRowEm * G) = Em;
     const Lane ca = MD_LOAD(c + C::kRowCosA * G), sa = MD_LOAD(c + C::kRowSinA * G);
     const Lane cth = cbx * ca - sbx * sa, sth = sbx * ca + cbx * sa;
-    const Lane p1 = ch * cth, p2 = ch * sth, p3 = sh * cth, p4 = sh * sth;
-    // vx ~ ch cos(th), vz ~ sh sin(th); d/dx turns cos into -sin (times kx), d/dz ch into sh.
-    const double* cx = c + C::kRowCx * G;
-    const double* cz = c + C::kRowCz * G;
-    sx[0] += MD_LOAD(cx + 0 * G) * p1;
-    sx[1] -= MD_LOAD(cx + 1 * G) * p2;
-    sx[2] += MD_LOAD(cx + 2 * G) * p3;
-    sx[3] -= MD_LOAD(cx + 3 * G) * p1;
-    sx[4] -= MD_LOAD(cx + 4 * G) * p4;
-    sx[5] += MD_LOAD(cx + 5 * G) * p1;
-    sz[0] += MD_LOAD(cz + 0 * G) * p4;
-    sz[1] += MD_LOAD(cz + 1 * G) * p3;
-    sz[2] += MD_LOAD(cz + 2 * G) * p2;
-    sz[3] -= MD_LOAD(cz + 3 * G) * p4;
-    sz[4] += MD_LOAD(cz + 4 * G) * p1;
-    sz[5] += MD_LOAD(cz + 5 * G) * p4;
+    accumulate(c, ch, sh, cth, sth, sx, sz);
   }
   for (int q = 0; q < 6; ++q) {
     out[q] = total(sx[q]);
@@ -144,21 +155,7 @@ MD_WAVE_SIMD_CLONES void referenceSums(const double* __restrict coef, const doub
     const Lane cb = MD_LOAD(st + C::kRowCosB * G), sb = MD_LOAD(st + C::kRowSinB * G);
     const Lane ca = MD_LOAD(c + C::kRowCosA * G), sa = MD_LOAD(c + C::kRowSinA * G);
     const Lane cth = cb * ca - sb * sa, sth = sb * ca + cb * sa;
-    const Lane p1 = ch * cth, p2 = ch * sth, p3 = sh * cth, p4 = sh * sth;
-    const double* cx = c + C::kRowCx * G;
-    const double* cz = c + C::kRowCz * G;
-    sx[0] += MD_LOAD(cx + 0 * G) * p1;
-    sx[1] -= MD_LOAD(cx + 1 * G) * p2;
-    sx[2] += MD_LOAD(cx + 2 * G) * p3;
-    sx[3] -= MD_LOAD(cx + 3 * G) * p1;
-    sx[4] -= MD_LOAD(cx + 4 * G) * p4;
-    sx[5] += MD_LOAD(cx + 5 * G) * p1;
-    sz[0] += MD_LOAD(cz + 0 * G) * p4;
-    sz[1] += MD_LOAD(cz + 1 * G) * p3;
-    sz[2] += MD_LOAD(cz + 2 * G) * p2;
-    sz[3] -= MD_LOAD(cz + 3 * G) * p4;
-    sz[4] += MD_LOAD(cz + 4 * G) * p1;
-    sz[5] += MD_LOAD(cz + 5 * G) * p4;
+    accumulate(c, ch, sh, cth, sth, sx, sz);
   }
   for (int q = 0; q < 6; ++q) {
     out[q] = total(sx[q]);
