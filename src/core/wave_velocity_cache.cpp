@@ -324,10 +324,7 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
         double sums[12];
         referenceSums(coefData(), st, ex.components / kGroup, sums);
         ex.t = t_;
-        for (int q = 0; q < 6; ++q) {
-          ex.vx[q] = sums[q] * ramp_;
-          ex.vz[q] = sums[6 + q] * ramp_;
-        }
+        ex.setSums(sums, ramp_);
       }
       auto taylor = [dx, dz](const double* v) {
         return v[0] + v[1] * dx + v[2] * dz + 0.5 * v[3] * dx * dx + v[4] * dx * dz + 0.5 * v[5] * dz * dz;
@@ -383,10 +380,7 @@ void WaveVelocityCache::velocity(std::size_t p, double x, double z, double& vx, 
   ex.z = z;
   ex.components = n;
   ex.radius = expansionRadiusFor(sums[12], k_n);
-  for (int q = 0; q < 6; ++q) {
-    ex.vx[q] = sums[q] * ramp_;
-    ex.vz[q] = sums[6 + q] * ramp_;
-  }
+  ex.setSums(sums, ramp_);
 }
 
 double WaveVelocityCache::expansionRadiusFor(double g3, double k_n) {

@@ -94,7 +94,7 @@ class WaveField {
 /// e^{+-k_i dz}, with Taylor series of the small differences; every evaluation moves the
 /// reference to its point (computed afresh when |k_i cos(theta_i) dx| or |k_i dz| would exceed
 /// kTaylorRadius, and after 512 moves). The value is WaveField::velocity(x, 0, z, t) up
-/// to rounding, with no transcendental function per component, point and evaluation, and the
+/// to rounding (and to components below its negligible velocity, which the cache may sum), with no transcendental function per component, point and evaluation, and the
 /// sum over the components is taken eight components at a time (SIMD where the compiler has it).
 /// Within a point's expansion radius of its reference the cache returns the second-order Taylor
 /// expansion about it instead (expansionRadius), at the same time or, by default, at a later one:
@@ -160,7 +160,8 @@ class WaveVelocityCache {
   /// the sums), each group a block of rows of kGroup values, so that a sum streams through two
   /// arrays (the constants and the point's state) instead of one per quantity. Constants per
   /// group (kCoefGroup values): k, k cos(theta), cos and sin of A, the six coefficients of vx and
-  /// the six of vz, and a omega k^3 times the depth factors' denominator (G3 of expansionRadius); state per point and group (kStateGroup values): cos and sin of B, E+, E-.
+  /// the six of vz, and a omega k^3 times the depth factors' denominator (G3 of
+  /// expansionRadius); state per point and group (kStateGroup values): cos and sin of B, E+, E-.
   static constexpr std::size_t kGroup = 8;
   enum CoefRow : std::size_t {
     kRowK, kRowKx, kRowCosA, kRowSinA, kRowCx, kRowCz = kRowCx + 6, kRowG3 = kRowCz + 6, kCoefRows
@@ -221,6 +222,13 @@ class WaveVelocityCache {
     double vx[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     double vz[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     bool valid = false;
+    /// vx, vz from the twelve sums (vx's six, then vz's) times the sea's ramp factor.
+    void setSums(const double* sums, double ramp) {
+      for (int q = 0; q < 6; ++q) {
+        vx[q] = sums[q] * ramp;
+        vz[q] = sums[6 + q] * ramp;
+      }
+    }
   };
   std::vector<Exact> exact_;
   double lin_radius_ = 0.0;             ///< linearRadius() [m]
