@@ -73,17 +73,16 @@ struct DynamicSolver2D::Impl {
   void inHalves(int m, int end, const F& f) const {
     core::inHalves(fork.get(), m, end, f);
   }
-  /// Where the water velocities split between the threads (set from the static shape,
-  /// balancedWaterSplit; fixed for the run, so that each node's wave references stay with one
-  /// thread; the water of the nodes between it and the meeting node crosses to the other
-  /// thread, 32 bytes a node).
+  /// Where the threads are expected to meet in the nodes' water values (set from the static
+  /// shape, balancedWaterSplit): sharedHalves starts from it and moves the meeting with the
+  /// threads' speed, so that a node's wave references stay with one thread but near it.
   int water_split = 0;
-  /// Where the interval rows split between the threads (evaluate; set from the mesh,
-  /// balancedSplit with kJunctionWork): a junction's rows (automatic differentiation) cost
-  /// several intervals', and junctions gather where bodies sit, near the top of a mooring. The
-  /// rows between it and the meeting node are assembled by one thread and eliminated by the
-  /// other (1 KB an interval). The split changes no result: every interval's rows are computed
-  /// alike on either thread.
+  /// Where the threads are expected to meet in the interval rows (evaluate; set from the mesh,
+  /// balancedSplit with kJunctionWork; sharedHalves starts from it): a junction's rows
+  /// (automatic differentiation) cost several intervals', and junctions gather where bodies sit,
+  /// near the top of a mooring. The rows between the meeting and the Newton matrix's meeting
+  /// node are assembled by one thread and eliminated by the other (1 KB an interval). No result
+  /// depends on it: every interval's rows are computed alike on either thread.
   int interval_split = 0;
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 
@@ -246,8 +245,7 @@ class DynamicStepSystem : public NewtonSystem {
     ydw_.resize(Y.size());
     c_.resize(static_cast<std::size_t>(n));
     s_.resize(static_cast<std::size_t>(n));
-    // Water at every node (split at im_.water_split), weighted rates (eq. 30)
-    // and cos, sin of the inclination (split at m).
+    // Water at every node, weighted rates (eq. 30) and cos, sin of the inclination.
     auto waterValues = [&](int j0, int j1) {
       for (int j = j0; j < j1; ++j) water_[static_cast<std::size_t>(j)] = im_.waterAt(j, Y[N * j + X], Y[N * j + Z]);
     };
@@ -259,25 +257,21 @@ class DynamicStepSystem : public NewtonSystem {
         sinCos(Y[N * j + PHI], s_[a], c_[a]);
       }
     };
-    const int w = m == 0 ? 0 : im_.water_split;
-    runBoth(
-        im_.fork.get(),
-        [&] {
-          waterValues(0, w);
-          nodeValues(0, m);
-        },
-        [&] {
-          waterValues(w, n);
-          nodeValues(m, n);
-        });
+    // Shared out as the threads go (sharedHalves), from the static shape's guess: every node's
+    // values are its own, whichever thread computes them.
+    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.water_split, n, [&](int j0, int j1, bool) {
+      waterValues(j0, j1);
+      nodeValues(j0, j1);
+    });
 
     const StepWeights wts{ak, (1.0 - am) * c1};
     std::vector<NodeTerms>& terms = im_.node_terms;
     terms.resize(static_cast<std::size_t>(n));
     terms_material_.assign(static_cast<std::size_t>(n), -1);  // none computed yet
-    // Intervals [j0, j1): the terms of node j0 > 0 are also the lower half's (its last
-    // interval's upper node), so the upper half computes them in a place of its own.
-    auto intervals = [&](int j0, int j1) {
+    // Intervals [j0, j1), a piece of sharedHalves: the terms of node j0 > 0 are also the piece
+    // below's (its last interval's upper node), so a piece computes them in a place of its own,
+    // unless it continues its thread's previous piece, which left them in `terms`.
+    auto intervals = [&](int j0, int j1, bool continued) {
       double Jl[N][2 * N];
       NodeTerms first_terms;
       long first_material = -1;
@@ -292,7 +286,7 @@ class DynamicStepSystem : public NewtonSystem {
           const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
           const Material& m_iv = im_.problem.materials[iv.material];
           auto termsOf = [&](std::size_t node, const NodeView& now) -> const NodeTerms& {
-            const bool own = j0 > 0 && node == static_cast<std::size_t>(j0);
+            const bool own = j0 > 0 && !continued && node == static_cast<std::size_t>(j0);
             long& material = own ? first_material : terms_material_[node];
             NodeTerms& t = own ? first_terms : terms[node];
             if (material != static_cast<long>(iv.material)) {
@@ -334,7 +328,7 @@ class DynamicStepSystem : public NewtonSystem {
         }
       }
     };
-    im_.inHalves(m == 0 ? 0 : im_.interval_split, n - 1, intervals);
+    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.interval_split, n - 1, intervals);
     topRows(Y, R, J);
   }
 
@@ -535,13 +529,12 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   {
     // In the units of one component's sum (measured on A.2, one thread): a node's water without
     // the sum (the current table's look-ups, three then, the cache's bookkeeping), and its rates and
-    // angles, which stay split at the meeting node. A.2 at 0.1 s, timed on one thread: the water
-    // phase took 0.71 s in the upper half against 0.34 s in the lower; split at node 198 of
-    // 274 instead of 137, 0.55 and 0.55 s.
+    // angles. A.2 at 0.1 s, timed on one thread: the water phase took 0.71 s in the upper half
+    // against 0.34 s in the lower; split at node 198 of 274 instead of 137, 0.55 and 0.55 s.
     constexpr double kWaterWork = 40.0, kRestWork = 8.0;
     std::vector<double> z(static_cast<std::size_t>(im.nodes()));
     for (int j = 0; j < im.nodes(); ++j) z[static_cast<std::size_t>(j)] = im.Y[N * j + Z];
-    im.water_split = balancedWaterSplit(im.wave_cache, z, BandedMatrix::meetingNode(im.nodes()), kWaterWork, kRestWork);
+    im.water_split = balancedWaterSplit(im.wave_cache, z, BandedMatrix::meetingNode(im.nodes()), kWaterWork + kRestWork, 0.0);
   }
   {
     // The Newton matrix's rows of a junction (pin rows with automatic differentiation) in those

@@ -1,5 +1,6 @@
 #include "mooring_dynamics/core/fork_join.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -84,6 +85,20 @@ void ForkJoin::loop() {
       error_ = std::current_exception();
     }
     done_.store(seen, std::memory_order_release);
+  }
+}
+
+bool TwoEndedClaims::claim(bool below, int& j0, int& j1) {
+  std::uint64_t now = ends_.load(std::memory_order_relaxed);
+  for (;;) {
+    const int lo = static_cast<int>(static_cast<std::uint32_t>(now >> 32));
+    const int hi = static_cast<int>(static_cast<std::uint32_t>(now));
+    if (lo >= hi) return false;
+    const int piece = std::min(hi - lo, std::max(kMinPiece, (hi - lo) / 4));
+    j0 = below ? lo : hi - piece;
+    j1 = below ? lo + piece : hi;
+    const std::uint64_t next = below ? pack(j1, hi) : pack(lo, j0);
+    if (ends_.compare_exchange_weak(now, next, std::memory_order_relaxed)) return true;
   }
 }
 

@@ -10,6 +10,8 @@
 
 using mooring_dynamics::core::balancedSplit;
 using mooring_dynamics::core::ForkJoin;
+using mooring_dynamics::core::sharedHalves;
+using mooring_dynamics::core::TwoEndedClaims;
 
 // Both halves run, the second on another thread, and run() returns only when both are done:
 // every result is visible to the caller right after it (no half left running).
@@ -79,4 +81,72 @@ TEST(BalancedSplit, BalancesTheHalvesCosts) {
   // Other work on the first thread moves the split down, on the second (negative) up.
   EXPECT_EQ(balancedSplit(std::vector<double>(10, 1.0), 4.0), 3);
   EXPECT_EQ(balancedSplit(std::vector<double>(10, 1.0), -4.0), 7);
+}
+
+// Claims from both ends hand out every item once, in pieces of a quarter of what is left (at
+// least kMinPiece), and stop when the ends meet.
+TEST(TwoEndedClaims, HandsOutEveryItemOnceFromBothEnds) {
+  TwoEndedClaims c(10, 30);  // 20 items
+  int j0 = 0, j1 = 0;
+  ASSERT_TRUE(c.fromBelow(j0, j1));
+  EXPECT_EQ(j0, 10);
+  EXPECT_EQ(j1, 15);  // 20 / 4
+  ASSERT_TRUE(c.fromAbove(j0, j1));
+  EXPECT_EQ(j0, 27);  // 15 left: 3
+  EXPECT_EQ(j1, 30);
+  std::vector<int> seen(40, 0);
+  for (int j = 10; j < 15; ++j) ++seen[static_cast<std::size_t>(j)];
+  for (int j = 27; j < 30; ++j) ++seen[static_cast<std::size_t>(j)];
+  bool below = true;
+  int pieces = 0;
+  while (below ? c.fromBelow(j0, j1) : c.fromAbove(j0, j1)) {
+    ASSERT_LT(j0, j1);
+    EXPECT_LE(j1 - j0, 3);  // 12 left: 3, then 2 (at least kMinPiece), and 1 last
+    for (int j = j0; j < j1; ++j) ++seen[static_cast<std::size_t>(j)];
+    below = !below;
+    ++pieces;
+  }
+  EXPECT_EQ(pieces, 6);  // [15, 27): 3, 2, 2, 2, 2, 1
+  for (int j = 0; j < 40; ++j) EXPECT_EQ(seen[static_cast<std::size_t>(j)], j >= 10 && j < 30 ? 1 : 0) << j;
+  EXPECT_FALSE(c.fromBelow(j0, j1));
+  EXPECT_FALSE(c.fromAbove(j0, j1));
+}
+
+namespace {
+/// Runs sharedHalves over [0, n) and checks that every item is done once and that a piece is
+/// `continued` exactly when it starts where the same thread's previous piece ended. Returns the
+/// items the calling thread did; worker_delay is slept by the worker at the start of each piece.
+int checkSharedHalves(ForkJoin* fork, int guess, int n, std::chrono::milliseconds worker_delay) {
+  std::vector<std::atomic<int>> done(static_cast<std::size_t>(n));
+  for (auto& d : done) d = 0;
+  const std::thread::id caller = std::this_thread::get_id();
+  int caller_end = -1, worker_end = -1, caller_items = 0;  // each written by its own thread
+  bool consistent = true;
+  sharedHalves(fork, guess, n, [&](int j0, int j1, bool continued) {
+    const bool mine = std::this_thread::get_id() == caller;
+    if (!mine) std::this_thread::sleep_for(worker_delay);
+    int& end = mine ? caller_end : worker_end;
+    if (continued != (end == j0)) consistent = false;
+    for (int j = j0; j < j1; ++j) ++done[static_cast<std::size_t>(j)];
+    if (mine) caller_items += j1 - j0;
+    end = j1;
+  });
+  EXPECT_TRUE(consistent);
+  for (int j = 0; j < n; ++j) EXPECT_EQ(done[static_cast<std::size_t>(j)].load(), 1) << j;
+  return caller_items;
+}
+}  // namespace
+
+// sharedHalves covers the items once with one thread or two; with two, a worker slowed down
+// (here by a sleep of 50 ms before each of its pieces) leaves the middle to the calling
+// thread, which then does more than its guessed share.
+TEST(SharedHalves, CoversEveryItemOnceAndFollowsTheThreadsSpeed) {
+  using std::chrono::milliseconds;
+  EXPECT_EQ(checkSharedHalves(nullptr, 50, 100, milliseconds(0)), 100);
+  ForkJoin fork;
+  EXPECT_EQ(checkSharedHalves(&fork, 0, 100, milliseconds(0)), 100);  // no guess: not split
+  for (int n : {2, 3, 7, 100, 273}) checkSharedHalves(&fork, n / 2, n, milliseconds(0));
+  // Guess 60 of 100: the calling thread's bulk is [0, 47), the middle [47, 73).
+  const int caller_items = checkSharedHalves(&fork, 60, 100, milliseconds(50));
+  EXPECT_GT(caller_items, 60);
 }

@@ -4,9 +4,11 @@
 // not depend on the number of threads.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -93,6 +95,59 @@ void inHalves(ForkJoin* fork, int m, int end, const F& f) {
     return;
   }
   runBoth(fork, [&] { f(0, m); }, [&] { f(m, end); });
+}
+
+/// Items [lo, hi) handed out from both ends, each claim taking a piece of what is left (a
+/// quarter, at least kMinPiece items): one thread claims from below, the other from above, and
+/// they meet where their speeds put them. Lock-free (one atomic word holds both ends).
+class TwoEndedClaims {
+ public:
+  static constexpr int kMinPiece = 2;
+  TwoEndedClaims(int lo, int hi) : ends_(pack(lo, hi)) {}
+  /// The next piece [j0, j1) from the lower end; false when nothing is left.
+  bool fromBelow(int& j0, int& j1) { return claim(true, j0, j1); }
+  /// The next piece [j0, j1) from the upper end; false when nothing is left.
+  bool fromAbove(int& j0, int& j1) { return claim(false, j0, j1); }
+
+ private:
+  static std::uint64_t pack(int lo, int hi) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(lo)) << 32) | static_cast<std::uint32_t>(hi);
+  }
+  bool claim(bool below, int& j0, int& j1);
+  alignas(128) std::atomic<std::uint64_t> ends_;  ///< lo in the high half, hi in the low half (a line of its own)
+};
+
+/// f(j0, j1, continued) over pieces that together cover [0, n) once, shared between this
+/// thread and the fork's worker as they go: this thread takes [0, guess - margin) and then
+/// pieces from below, the worker [guess + margin, n) and then pieces from above (margin a third
+/// of the smaller side), so that a thread the host slows down does fewer items. `continued` is
+/// true when the piece begins where the same thread's previous one ended (it then comes from
+/// below). For work whose result does not depend on which thread does an item nor on how the
+/// items are grouped. Without a fork or with guess outside (0, n): f(0, n, false) here.
+template <class F>
+void sharedHalves(ForkJoin* fork, int guess, int n, const F& f) {
+  if (!fork || guess <= 0 || guess >= n) {
+    f(0, n, false);
+    return;
+  }
+  const int margin = std::min(guess, n - guess) / 3;
+  const int bulk_lo = guess - margin, bulk_hi = guess + margin;
+  TwoEndedClaims middle(bulk_lo, bulk_hi);
+  fork->run(
+      [&] {
+        if (bulk_lo > 0) f(0, bulk_lo, false);
+        int j0, j1;
+        bool continued = bulk_lo > 0;
+        while (middle.fromBelow(j0, j1)) {
+          f(j0, j1, continued);
+          continued = true;
+        }
+      },
+      [&] {
+        if (bulk_hi < n) f(bulk_hi, n, false);
+        int j0, j1;
+        while (middle.fromAbove(j0, j1)) f(j0, j1, false);
+      });
 }
 
 /// Where to split n work items of costs cost[0 .. n) for inHalves(split, n, f): the split in
