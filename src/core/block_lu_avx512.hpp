@@ -53,6 +53,38 @@ struct ColumnLU {
   typedef std::uint32_t Slots;  // one bit per slot
 
   static MD_INLINE double* column(double* panel, int c) { return panel + static_cast<std::size_t>(c) * LANES; }
+
+  /// Whether an inner panel keeps its node j + 1 columns in registers through its NB steps
+  /// (NB G vectors: 16 of the 32 with 8 unknowns per node) instead of loading and storing each
+  /// at every step: the updates were bound by the stores (one 512-bit store per vector and
+  /// update, 184 of them per node; half-width store path on Zen 4). The same operations in the
+  /// same order, so the same bits.
+  static constexpr bool HELD = NB * G <= 16;
+  typedef __m512d Held[HELD ? NB : 1][G];
+
+  /// Lane q of the G = 2 vectors v in every lane.
+  static MD_INLINE __m512d broadcastLane(const __m512d* v, int q) {
+    return _mm512_permutex2var_pd(v[0], _mm512_set1_epi64(q), v[G > 1 ? 1 : 0]);
+  }
+  /// update() of a column held in registers, in place.
+  static MD_INLINE void updateHeld(__m512d* v, int q, Slots upd, const __m512d* l) {
+    const __m512d u = broadcastLane(v, q);
+    for (int g = 0; g < G; ++g) v[g] = _mm512_mask_sub_pd(v[g], part(upd, g), v[g], _mm512_mul_pd(l[g], u));
+  }
+  /// Column c (>= NB) of an inner panel minus l u: held (in registers) or in P.
+  template <int COLS, int C>
+  static MD_INLINE void updateRight(double* P, Held& held, int q, Slots upd, const __m512d* l) {
+    if constexpr (COLS == W && HELD && C >= NB) updateHeld(held[C - NB], q, upd, l);
+    else update(P, C, q, upd, l, column(P, C), nullptr);
+  }
+  /// updateRight of columns C .. COLS - 1.
+  template <int COLS, int C>
+  static MD_INLINE void updateFrom(double* P, Held& held, int q, Slots upd, const __m512d* l) {
+    if constexpr (C < COLS) {
+      updateRight<COLS, C>(P, held, q, upd, l);
+      updateFrom<COLS, C + 1>(P, held, q, upd, l);
+    }
+  }
   static MD_INLINE __mmask8 part(Slots s, int g) { return static_cast<__mmask8>(s >> (8 * g)); }
 
   /// dst[c * ds + r] = src[r * ss + c] for an 8 x 8 block (three stages of two-vector shuffles).
@@ -107,8 +139,12 @@ struct ColumnLU {
       for (int k = 0; k < NB; ++k) guess[k] = perm[k] & (LANES - 1);  // (in range whatever perm holds)
     __m512d cand[G], none[G] = {};
     for (int g = 0; g < G; ++g) cand[g] = _mm512_loadu_pd(column(P, 0) + 8 * g);
+    Held held;
+    if constexpr (COLS == W && HELD)
+      for (int c = NB; c < W; ++c)
+        for (int g = 0; g < G; ++g) held[c - NB][g] = _mm512_loadu_pd(column(P, c) + 8 * g);
     int info = 0;
-    step<COLS, 0, GUESS>(P, rd, next, active, at, pos, cand, none, 0, 0, info, guess);
+    step<COLS, 0, GUESS>(P, rd, next, active, at, pos, cand, none, 0, 0, info, guess, held);
     if (info != 0) return info;
     for (int r = 0; r < ROWS; ++r) perm[r] = static_cast<int>(at[r]);
     return 0;
@@ -147,7 +183,7 @@ struct ColumnLU {
   template <int COLS, int K, bool GUESS>
   static MD_INLINE void step(double* P, double* rd, double* next, Slots& active, std::int64_t* at, int* pos,
                              const __m512d* cand, const __m512d* lp, int qp, Slots up, int& info,
-                             const int* guess) {
+                             const int* guess, Held& held) {
     if constexpr (K < NB) {
       // With a guess, 1 / pivot from the guessed slot right away (1 / p is the search path's
       // 1 / |p| with p's sign: IEEE division rounds the magnitude alike).
@@ -220,8 +256,14 @@ struct ColumnLU {
       // The previous step's update of columns K + 2 .. (see below): it runs while this step's
       // division does, instead of holding the ports when this step's multipliers are ready.
       if constexpr (K > 0) {
+        if constexpr (COLS == W && HELD) {
 #pragma GCC unroll 1
-        for (int c = K + 2; c < COLS; ++c) update(P, c, qp, up, lp, column(P, c), nullptr);
+          for (int c = K + 2; c < NB; ++c) update(P, c, qp, up, lp, column(P, c), nullptr);
+          updateFrom<COLS, std::max(K + 2, NB)>(P, held, qp, up, lp);
+        } else {
+#pragma GCC unroll 1
+          for (int c = K + 2; c < COLS; ++c) update(P, c, qp, up, lp, column(P, c), nullptr);
+        }
       }
       // Multipliers into column K; columns K + 1 (the next candidates, kept in registers) and
       // K + 2 now, the rest in the next step. The last step of an inner panel stages the
@@ -234,11 +276,21 @@ struct ColumnLU {
       }
       if constexpr (K + 1 < NB) {
         update(P, K + 1, q, active, l, nullptr, nextCand);
-        if constexpr (K + 2 < COLS) update(P, K + 2, q, active, l, column(P, K + 2), nullptr);
-        step<COLS, K + 1, GUESS>(P, rd, next, active, at, pos, nextCand, l, q, active, info, guess);
+        if constexpr (K + 2 < COLS) updateRight<COLS, K + 2>(P, held, q, active, l);
+        step<COLS, K + 1, GUESS>(P, rd, next, active, at, pos, nextCand, l, q, active, info, guess, held);
       } else if constexpr (COLS == W) {
+        if constexpr (HELD) {
+          // The held columns as the panel keeps them (U's rows: their state before this last
+          // step), then this step's update of the leftover rows, staged.
+          for (int c = NB; c < W; ++c) {
+            for (int g = 0; g < G; ++g) _mm512_storeu_pd(column(P, c) + 8 * g, held[c - NB][g]);
+            updateHeld(held[c - NB], q, active, l);
+            for (int g = 0; g < G; ++g) _mm512_storeu_pd(column(next, c - NB) + 8 * g, held[c - NB][g]);
+          }
+        } else {
 #pragma GCC unroll 1
-        for (int c = NB; c < W; ++c) update(P, c, q, active, l, column(next, c - NB), nullptr);
+          for (int c = NB; c < W; ++c) update(P, c, q, active, l, column(next, c - NB), nullptr);
+        }
       }
     }
   }
