@@ -23,7 +23,7 @@
 
 #include <Eigen/Core>
 
-#include "mooring_dynamics/core/banded_matrix.hpp"
+#include "mooring_dynamics/core/numerics/banded_matrix.hpp"
 
 using mooring_dynamics::core::BandedMatrix;
 

@@ -11,8 +11,8 @@
 
 #include <unistd.h>
 
-#include "mooring_dynamics/core/model.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 
 namespace mooring_dynamics {
 namespace bench {

@@ -28,9 +28,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "mooring_dynamics/core/dynamics2d.hpp"
-#include "mooring_dynamics/core/model.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 #include "bench_configs.hpp"
 #include "bench_problems.hpp"
 

@@ -24,8 +24,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "mooring_dynamics/core/dynamics3d.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 #include "bench_configs.hpp"
 #include "bench_problems.hpp"
 

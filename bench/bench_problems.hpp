@@ -1,7 +1,7 @@
 // Problems shared by the benchmarks, built in code.
 #pragma once
 
-#include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
 
 namespace mooring_dynamics {
 namespace bench {

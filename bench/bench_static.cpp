@@ -11,10 +11,10 @@
 #include <cmath>
 #include <string>
 
-#include "mooring_dynamics/core/catenary.hpp"
-#include "mooring_dynamics/core/model.hpp"
-#include "mooring_dynamics/core/result.hpp"
-#include "mooring_dynamics/core/statics2d.hpp"
+#include "mooring_dynamics/core/equations/catenary.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/core/solvers/statics2d.hpp"
 #include "bench_problems.hpp"
 
 namespace md = mooring_dynamics::core;

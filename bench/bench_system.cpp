@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/system.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/system_statics.hpp"
 
 namespace md = mooring_dynamics::core;
 

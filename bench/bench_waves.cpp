@@ -13,7 +13,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "mooring_dynamics/core/waves.hpp"
+#include "mooring_dynamics/core/numerics/wave_velocity_cache.hpp"
 
 using mooring_dynamics::core::WaveField;
 using mooring_dynamics::core::WaveSpec;

@@ -22,7 +22,7 @@
 #include <ros/ros.h>
 
 #include "mooring_dynamics/CableState.h"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/ros/companions.hpp"
 
 namespace {

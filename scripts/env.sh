@@ -13,7 +13,8 @@ md_build() {
   # Configure (once) and build everything, including tests, out of tree in $MD_BUILD.
   if [ ! -f "$MD_BUILD/CMakeCache.txt" ]; then
     cmake -S "$MD_ROOT" -B "$MD_BUILD" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-      -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON >"$MD_BUILD/configure.log" 2>&1 \
+      -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON -DMD_WERROR="${MD_WERROR:-${CI:+ON}}" \
+      ${MD_CMAKE_ARGS:-} $(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache) >"$MD_BUILD/configure.log" 2>&1 \
       || { cat "$MD_BUILD/configure.log"; return 1; }
   fi
   cmake --build "$MD_BUILD" -j"$(nproc)" -- all tests

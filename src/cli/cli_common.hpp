@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/dynamics_options.hpp"
+#include "mooring_dynamics/core/model/dynamics_options.hpp"
 
 #include "cli_app.hpp"
 

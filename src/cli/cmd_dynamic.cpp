@@ -18,14 +18,14 @@
 #include <vector>
 
 #include "cli_common.hpp"
-#include "mooring_dynamics/core/dynamics2d.hpp"
-#include "mooring_dynamics/core/model.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/result.hpp"
-#include "mooring_dynamics/core/result_io.hpp"
-#include "mooring_dynamics/core/solvers.hpp"
-#include "mooring_dynamics/core/statics2d.hpp"
-#include "mooring_dynamics/core/time_integration.hpp"
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/core/io/result_io.hpp"
+#include "mooring_dynamics/core/solvers/solvers.hpp"
+#include "mooring_dynamics/core/solvers/statics2d.hpp"
+#include "mooring_dynamics/core/model/time_integration.hpp"
 
 namespace mooring_dynamics {
 namespace cli {

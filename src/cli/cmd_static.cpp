@@ -8,11 +8,11 @@
 #include <system_error>
 
 #include "cli_common.hpp"
-#include "mooring_dynamics/core/model.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/result.hpp"
-#include "mooring_dynamics/core/result_io.hpp"
-#include "mooring_dynamics/core/solvers.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/core/io/result_io.hpp"
+#include "mooring_dynamics/core/solvers/solvers.hpp"
 
 namespace mooring_dynamics {
 namespace cli {

@@ -10,10 +10,10 @@
 #include <system_error>
 
 #include "cli_common.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/result_io.hpp"
-#include "mooring_dynamics/core/system.hpp"
-#include "mooring_dynamics/core/system_dynamics.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/io/result_io.hpp"
+#include "mooring_dynamics/core/solvers/system_statics.hpp"
+#include "mooring_dynamics/core/solvers/system_dynamics.hpp"
 
 namespace mooring_dynamics {
 namespace cli {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "mooring_dynamics/core/solvers.hpp"
-#include "mooring_dynamics/core/statics2d.hpp"
+#include "mooring_dynamics/core/solvers/solvers.hpp"
+#include "mooring_dynamics/core/solvers/statics2d.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 
 namespace mooring_dynamics {

@@ -5,7 +5,7 @@
 #include <exception>
 #include <stdexcept>
 
-#include "mooring_dynamics/core/dynamics3d.hpp"
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 
 namespace mooring_dynamics {

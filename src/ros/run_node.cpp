@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/ros/lockstep_node.hpp"
 #include "mooring_dynamics/ros/static_node.hpp"
 #include "mooring_dynamics/ros/system_node.hpp"

@@ -7,8 +7,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "mooring_dynamics/CableState.h"
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/solvers.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/solvers.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 
 namespace mooring_dynamics {

@@ -7,7 +7,8 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "mooring_dynamics/CableState.h"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/system_statics.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 #include "mooring_dynamics/ros/markers.hpp"
 

@@ -14,7 +14,7 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
 
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/ros/companions.hpp"
 
 namespace md = mooring_dynamics::ros_bridge;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "mooring_dynamics/core/system.hpp"
+#include "mooring_dynamics/core/model/system.hpp"
 
 namespace mooring_dynamics {
 namespace core {

@@ -13,10 +13,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "mooring_dynamics/core/adaptive_mesh.hpp"
-#include "mooring_dynamics/core/catenary.hpp"
-#include "mooring_dynamics/core/mesh.hpp"
-#include "mooring_dynamics/core/statics2d.hpp"
+#include "mooring_dynamics/core/solvers/adaptive_mesh.hpp"
+#include "mooring_dynamics/core/equations/catenary.hpp"
+#include "mooring_dynamics/core/equations/mesh.hpp"
+#include "mooring_dynamics/core/solvers/statics2d.hpp"
 
 using namespace mooring_dynamics::core;
 

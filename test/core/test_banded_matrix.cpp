@@ -10,8 +10,8 @@
 
 #include <Eigen/Dense>
 
-#include "mooring_dynamics/core/banded_matrix.hpp"
-#include "mooring_dynamics/core/fork_join.hpp"
+#include "mooring_dynamics/core/numerics/banded_matrix.hpp"
+#include "mooring_dynamics/core/numerics/fork_join.hpp"
 
 using mooring_dynamics::core::BandedMatrix;
 

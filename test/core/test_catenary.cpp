@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "mooring_dynamics/core/catenary.hpp"
+#include "mooring_dynamics/core/equations/catenary.hpp"
 
 using namespace mooring_dynamics::core;
 

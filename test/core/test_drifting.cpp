@@ -13,11 +13,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "mooring_dynamics/core/drifting.hpp"
-#include "mooring_dynamics/core/dynamics3d.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/result_io.hpp"
-#include "mooring_dynamics/core/statics3d.hpp"
+#include "mooring_dynamics/core/solvers/drifting.hpp"
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/io/result_io.hpp"
+#include "mooring_dynamics/core/solvers/statics3d.hpp"
 
 using namespace mooring_dynamics::core;
 

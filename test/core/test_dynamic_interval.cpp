@@ -12,7 +12,7 @@
 #include <cmath>
 #include <random>
 
-#include "mooring_dynamics/core/dynamic_interval.hpp"
+#include "mooring_dynamics/core/equations/dynamic_interval.hpp"
 
 using namespace mooring_dynamics::core;
 using namespace mooring_dynamics::core::eq2dyn;

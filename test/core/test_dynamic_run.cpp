@@ -8,9 +8,9 @@
 #include <cmath>
 #include <string>
 
-#include "mooring_dynamics/core/dynamic_run.hpp"
-#include "mooring_dynamics/core/dynamics2d.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/dynamic_run.hpp"
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 
 using namespace mooring_dynamics::core;
 

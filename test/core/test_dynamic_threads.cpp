@@ -9,9 +9,9 @@
 #include <cstddef>
 #include <string>
 
-#include "mooring_dynamics/core/dynamics2d.hpp"
-#include "mooring_dynamics/core/dynamics3d.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 
 using namespace mooring_dynamics::core;
 

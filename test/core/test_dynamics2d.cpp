@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/dynamics2d.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 
 using namespace mooring_dynamics::core;
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/dynamics2d.hpp"
-#include "mooring_dynamics/core/dynamics3d.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 
 using namespace mooring_dynamics::core;
 

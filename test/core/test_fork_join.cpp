@@ -1,4 +1,4 @@
-#include "mooring_dynamics/core/fork_join.hpp"
+#include "mooring_dynamics/core/numerics/fork_join.hpp"
 
 #include <atomic>
 #include <chrono>

@@ -7,8 +7,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "mooring_dynamics/core/mesh.hpp"
-#include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/equations/mesh.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
 
 using namespace mooring_dynamics::core;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
 
 using namespace mooring_dynamics::core;
 

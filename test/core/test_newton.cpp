@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/newton.hpp"
+#include "mooring_dynamics/core/numerics/newton.hpp"
 
 using namespace mooring_dynamics::core;
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 
 using namespace mooring_dynamics::core;
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 
 using namespace mooring_dynamics::core;
 
@@ -382,7 +382,7 @@ TEST(ProblemIo, WavesRegularAndRandom) {
     const WaveSpec& w = p.environment.waves;
     const WaveSpec d;
     EXPECT_EQ(w.type, WaveSpec::Type::PiersonMoskowitz);
-    EXPECT_EQ(w.components, d.components);  // defaults from core/waves.hpp
+    EXPECT_EQ(w.components, d.components);  // defaults from core/model/waves.hpp
     EXPECT_DOUBLE_EQ(w.f_min_factor, d.f_min_factor);
     EXPECT_DOUBLE_EQ(w.f_max_factor, d.f_max_factor);
     EXPECT_EQ(w.seed, d.seed);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/result_io.hpp"
+#include "mooring_dynamics/core/io/result_io.hpp"
 
 using namespace mooring_dynamics::core;
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/seabed_grid_io.hpp"
+#include "mooring_dynamics/core/io/seabed_grid_io.hpp"
 
 using namespace mooring_dynamics::core;
 

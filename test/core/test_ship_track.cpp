@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/ship_track.hpp"
+#include "mooring_dynamics/core/model/ship_track.hpp"
 
 using namespace mooring_dynamics::core;
 

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "mooring_dynamics/core/initial_guess.hpp"
-#include "mooring_dynamics/core/mesh.hpp"
-#include "mooring_dynamics/core/static_system.hpp"
+#include "mooring_dynamics/core/solvers/initial_guess.hpp"
+#include "mooring_dynamics/core/equations/mesh.hpp"
+#include "mooring_dynamics/core/solvers/static_system.hpp"
 
 using namespace mooring_dynamics::core;
 

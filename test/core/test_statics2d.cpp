@@ -6,9 +6,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "mooring_dynamics/core/catenary.hpp"
-#include "mooring_dynamics/core/equations2d.hpp"
-#include "mooring_dynamics/core/statics2d.hpp"
+#include "mooring_dynamics/core/equations/catenary.hpp"
+#include "mooring_dynamics/core/equations/equations2d.hpp"
+#include "mooring_dynamics/core/solvers/statics2d.hpp"
 
 using namespace mooring_dynamics::core;
 

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "mooring_dynamics/core/catenary.hpp"
-#include "mooring_dynamics/core/equations3d.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/quaternion.hpp"
-#include "mooring_dynamics/core/statics2d.hpp"
-#include "mooring_dynamics/core/statics3d.hpp"
+#include "mooring_dynamics/core/equations/catenary.hpp"
+#include "mooring_dynamics/core/equations/equations3d.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/model/quaternion.hpp"
+#include "mooring_dynamics/core/solvers/statics2d.hpp"
+#include "mooring_dynamics/core/solvers/statics3d.hpp"
 
 using namespace mooring_dynamics::core;
 

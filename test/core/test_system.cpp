@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "mooring_dynamics/core/catenary.hpp"
-#include "mooring_dynamics/core/system.hpp"
+#include "mooring_dynamics/core/equations/catenary.hpp"
+#include "mooring_dynamics/core/solvers/system_statics.hpp"
 #include "system_test_util.hpp"
 
 using namespace mooring_dynamics::core;
@@ -171,7 +171,7 @@ TEST(System, TopologyErrorsNameTheProblem) {
   EXPECT_THROW(solveSystemStatic(s), std::invalid_argument);
 }
 
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 
 TEST(System, ShippedThreeLegFileLoadsAndSolves) {
   ASSERT_TRUE(isSystemFile("config/three_leg_buoy.yaml"));

@@ -11,8 +11,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/system_dynamics.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/system_dynamics.hpp"
 #include "system_test_util.hpp"
 
 using namespace mooring_dynamics::core;

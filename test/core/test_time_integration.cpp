@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/time_integration.hpp"
+#include "mooring_dynamics/core/model/time_integration.hpp"
 
 using namespace mooring_dynamics::core;
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/top_motion.hpp"
+#include "mooring_dynamics/core/model/top_motion.hpp"
 
 using namespace mooring_dynamics::core;
 

@@ -9,9 +9,9 @@
 
 #include <Eigen/Core>
 
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/statics3d.hpp"
-#include "mooring_dynamics/core/towing.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/statics3d.hpp"
+#include "mooring_dynamics/core/solvers/towing.hpp"
 
 using namespace mooring_dynamics::core;
 
@@ -209,7 +209,7 @@ top:
 
 // --- Dynamics -------------------------------------------------------------------------------------
 
-#include "mooring_dynamics/core/dynamics3d.hpp"
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
 
 namespace {
 // Steady tow: the start gives every node the ship's velocity, R^T V in local components, which

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "mooring_dynamics/core/waves.hpp"
+#include "mooring_dynamics/core/numerics/wave_velocity_cache.hpp"
 
 using namespace mooring_dynamics::core;
 
@@ -122,7 +122,9 @@ TEST(Waves, VelocityCacheLinearizesWithinItsRadius) {
         }
         EXPECT_GT(r, 0.8 * r_global) << "depth " << depth << " z " << z0;
         EXPECT_LE(r, WaveVelocityCache::kMaxExpansionRadius);
-        if (depth > 1000.0 && z0 < -100.0) EXPECT_GT(r, 5.0 * r_global) << "z " << z0;
+        if (depth > 1000.0 && z0 < -100.0) {
+          EXPECT_GT(r, 5.0 * r_global) << "z " << z0;
+        }
         // A displacement of 0.9 r in direction theta: linearized, within the bound.
         const double th = 0.37 * trial + 1.3 * p, d = 0.9 * r;
         const double x1 = x0 + d * std::cos(th), z1 = z0 + d * std::sin(th);

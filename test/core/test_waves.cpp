@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "mooring_dynamics/core/waves.hpp"
+#include "mooring_dynamics/core/model/waves.hpp"
 
 using namespace mooring_dynamics::core;
 

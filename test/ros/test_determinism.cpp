@@ -23,10 +23,10 @@
 #include <rosbag/bag.h>
 
 #include "mooring_dynamics/CableState.h"
-#include "mooring_dynamics/core/dynamics2d.hpp"
-#include "mooring_dynamics/core/dynamics3d.hpp"
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/solvers.hpp"
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/solvers.hpp"
 #include "mooring_dynamics/ros/lockstep.hpp"
 
 using mooring_dynamics::CableState;

@@ -28,8 +28,8 @@
 
 #include "lockstep_listener.hpp"
 #include "mooring_dynamics/SolveStatic.h"
-#include "mooring_dynamics/core/problem_io.hpp"
-#include "mooring_dynamics/core/solvers.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/solvers.hpp"
 
 using lockstep_test::Listener;
 using lockstep_test::waitForConnection;
@@ -166,7 +166,9 @@ TEST(Lockstep3D, OdometryYAndVesselFrame) {
     const geometry_msgs::WrenchStamped& w = l.wrenches[o.header.stamp.toNSec()];
     SCOPED_TRACE("k = " + std::to_string(k));
     // k = 0: 0.5 m from the static top: statics re-solved with the top there, y included.
-    if (k == 0) EXPECT_NEAR(s.positions.back().y, top.y + 0.5, kHeldAt);
+    if (k == 0) {
+      EXPECT_NEAR(s.positions.back().y, top.y + 0.5, kHeldAt);
+    }
     // vessel90 = world turned 90 deg about z: vessel x = world y, vessel y = -world x.
     EXPECT_EQ(w.header.frame_id, "vessel90");
     EXPECT_NEAR(w.wrench.force.x, -s.top_force.y, 1e-9 * std::abs(s.top_force.y) + 1e-9);

@@ -20,7 +20,7 @@
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/SolveStatic.h"
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 #include "mooring_dynamics/ros/markers.hpp"
 #include "mooring_dynamics/ros/static_node.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/ros/companions.hpp"
 
 using namespace mooring_dynamics::ros_bridge;

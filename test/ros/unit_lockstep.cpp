@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "mooring_dynamics/core/problem_io.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/ros/lockstep.hpp"
 #include "mooring_dynamics/ros/lockstep_monitor.hpp"
 #include "mooring_dynamics/ros/markers.hpp"
@@ -187,7 +187,9 @@ TEST(LockstepMonitor, SlackEvents) {
   EXPECT_EQ(s.level, LockstepMonitor::WARN);
   EXPECT_NE(s.message.find("line slack (min tension 0.0 N)"), std::string::npos) << s.message;
   for (const auto& kv : s.values)
-    if (kv.first == "slack events (total)") EXPECT_EQ(kv.second, "2");
+    if (kv.first == "slack events (total)") {
+      EXPECT_EQ(kv.second, "2");
+    }
 }
 
 TEST(Markers, BodiesOfSTether) {

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {

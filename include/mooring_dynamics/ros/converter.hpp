@@ -13,8 +13,8 @@
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/SolveStatic.h"
-#include "mooring_dynamics/core/model.hpp"
-#include "mooring_dynamics/core/result.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/model/result.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {

@@ -39,10 +39,10 @@
 #include <memory>
 #include <string>
 
-#include "mooring_dynamics/core/dynamics2d.hpp"
-#include "mooring_dynamics/core/model.hpp"
-#include "mooring_dynamics/core/result.hpp"
-#include "mooring_dynamics/core/top_motion.hpp"
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/core/model/top_motion.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {

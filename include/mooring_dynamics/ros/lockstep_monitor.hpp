@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "mooring_dynamics/core/result.hpp"
+#include "mooring_dynamics/core/model/result.hpp"
 #include "mooring_dynamics/ros/lockstep.hpp"
 
 namespace mooring_dynamics {

@@ -32,7 +32,7 @@
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/SolveStatic.h"
-#include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
 #include "mooring_dynamics/ros/lockstep.hpp"
 #include "mooring_dynamics/ros/lockstep_monitor.hpp"
 #include "mooring_dynamics/ros/markers.hpp"

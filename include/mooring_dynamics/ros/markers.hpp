@@ -27,7 +27,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "mooring_dynamics/CableState.h"
-#include "mooring_dynamics/core/model.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {

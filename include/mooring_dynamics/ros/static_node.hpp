@@ -19,8 +19,8 @@
 #include <ros/ros.h>
 
 #include "mooring_dynamics/SolveStatic.h"
-#include "mooring_dynamics/core/model.hpp"
-#include "mooring_dynamics/core/result.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/model/result.hpp"
 #include "mooring_dynamics/ros/markers.hpp"
 
 namespace mooring_dynamics {

@@ -1,4 +1,4 @@
-// ROS node state for a system of lines (core/system.hpp: multi-leg and branched moorings),
+// ROS node state for a system of lines (core/model/system.hpp: multi-leg and branched moorings),
 // static mode: the system's equilibrium on start, published per line and per point.
 //
 // Parameters (private): ~problem_file (a system file: `points` and `lines`), ~frame_id
@@ -18,7 +18,7 @@
 
 #include <ros/ros.h>
 
-#include "mooring_dynamics/core/system.hpp"
+#include "mooring_dynamics/core/model/system.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {

@@ -1,0 +1,68 @@
+// Dynamics of a system of lines (system.hpp): free points (surface buoys, submerged bodies) at the
+// ends of lines, e.g. a multi-leg buoy or a branched array's junction float.
+//
+// Partitioned implicit coupling: each line is advanced by its own DynamicSolver3D (the 3-D box
+// scheme and generalized-alpha of dynamics3d.hpp) with its top following its upper point
+// (velocity and position fed back, as a vessel's fairlead) and its anchor following its lower
+// point (setLowerEndInput) when that point is free; each free point is a rigid point mass (mass and
+// added mass, buoyancy from the draft for a buoy, net buoyancy for a body, quadratic drag on the
+// velocity relative to the current, wind on a buoy) integrated by Newmark's trapezoidal rule
+// (gamma = 1/2, beta = 1/4). Every base step solves the points' new positions by Newton
+// iterations: for trial positions every line re-runs the step from the same start (save /
+// restore), and the residual is each point's force balance M a = sum of the lines' pulls + its
+// own load. The point Jacobian (finite differences, 3 unknowns per point) is kept across steps
+// and refreshed when the iteration slows. Cost per step: the lines' steps times the iterations.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mooring_dynamics/core/model/dynamics_options.hpp"
+#include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/core/solvers/system_statics.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+class SystemDynamics {
+ public:
+  /// Solves the system's statics and starts every line and point from them, at rest. Throws
+  /// std::invalid_argument for an invalid system or invalid options; std::runtime_error when the
+  /// statics fail.
+  SystemDynamics(const SystemProblem& system, const DynamicOptions& options);
+  ~SystemDynamics();
+  SystemDynamics(const SystemDynamics&) = delete;
+  SystemDynamics& operator=(const SystemDynamics&) = delete;
+
+  /// An external force [N] (problem frame) on point `point` as a function of time [s], e.g. a
+  /// pull on the buoy. Only free points move; a force on a fixed point is ignored.
+  void setPointForce(std::size_t point, std::function<std::array<double, 3>(double)> force);
+
+  /// Advance to t_end in base steps of options.dt (the last one shortened). False, with the
+  /// reason in `message`, when a line's step or the point iteration fails; the state then stays
+  /// at the last converged time.
+  bool advanceTo(double t_end, std::string* message = nullptr);
+
+  double time() const;
+  const SystemStaticResult& initialStatic() const;
+  /// Points now: positions [m], the lines' pulls [N] and, for free points, the velocity is in
+  /// pointVelocity().
+  std::vector<SystemPointResult> points() const;
+  std::array<double, 3> pointVelocity(std::size_t point) const;
+  /// Line i now (nodes, end forces).
+  StaticResult line(std::size_t i) const;
+  /// Point iterations and line steps taken so far (cost bookkeeping).
+  long pointIterations() const;
+  long lineSteps() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace core
+}  // namespace mooring_dynamics

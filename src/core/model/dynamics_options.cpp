@@ -1,0 +1,79 @@
+#include "mooring_dynamics/core/model/dynamics_options.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace mooring_dynamics {
+namespace core {
+
+namespace {
+std::string bad(const std::string& key, double v, const std::string& constraint) {
+  std::ostringstream os;
+  os.precision(10);
+  os << key << " = " << v << ": " << constraint;
+  return os.str();
+}
+}  // namespace
+
+std::string TopMotion::validate() const {
+  const std::string k = "dynamics.top_motion.";
+  switch (type) {
+    case Type::Hold:
+    case Type::WaveFollower:
+      return {};
+    case Type::ShipTrack:
+      return ship_track.validate("dynamics.top_motion");
+    case Type::Sinusoid:
+      if (!std::isfinite(amplitude_x)) return bad(k + "amplitude_x", amplitude_x, "must be finite");
+      if (!std::isfinite(amplitude_y)) return bad(k + "amplitude_y", amplitude_y, "must be finite");
+      if (!std::isfinite(amplitude_z)) return bad(k + "amplitude_z", amplitude_z, "must be finite");
+      if (!(std::isfinite(period) && period > 0.0)) return bad(k + "period", period, "must be > 0");
+      if (!std::isfinite(phase)) return bad(k + "phase_deg", phase, "must be finite");
+      return {};
+    case Type::PositionTable:
+    case Type::VelocityTable:
+    case Type::ForceTable:
+      if (table.empty()) return k + "table: needs at least one row [t, x, z] or [t, x, y, z]";
+      for (std::size_t i = 0; i < table.size(); ++i) {
+        const Row& r = table[i];
+        const std::string rk = k + "table[" + std::to_string(i) + "]";
+        if (!std::isfinite(r.t) || !std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z))
+          return rk + ": values must be finite";
+        if (i > 0 && !(r.t > table[i - 1].t)) return bad(rk + " t", r.t, "times must increase");
+      }
+      return {};
+  }
+  return {};
+}
+
+std::string DynamicOptions::validate() const {
+  const std::string k = "dynamics.";
+  if (!(std::isfinite(duration) && duration >= 0.0)) return bad(k + "duration", duration, "must be >= 0");
+  if (!(std::isfinite(dt) && dt > 0.0)) return bad(k + "dt", dt, "must be > 0");
+  if (!(std::isfinite(output_interval) && output_interval >= 0.0))
+    return bad(k + "output_interval", output_interval, "must be >= 0");
+  if (output_interval > 0.0) {
+    const double ratio = output_interval / dt;
+    if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio || std::round(ratio) < 1.0)
+      return bad(k + "output_interval", output_interval, "must be a whole multiple of dt = " + std::to_string(dt));
+  }
+  if (!(std::isfinite(snapshot_interval) && snapshot_interval >= 0.0))
+    return bad(k + "snapshot_interval", snapshot_interval, "must be >= 0");
+  for (std::size_t i = 0; i < record_s.size(); ++i)
+    if (!(std::isfinite(record_s[i]) && record_s[i] >= 0.0))
+      return bad(k + "record_s[" + std::to_string(i) + "]", record_s[i], "must be >= 0");
+  std::string e = scheme.validate();
+  if (!e.empty()) return e;
+  if (max_cut_levels < 0 || max_cut_levels > 8)
+    return k + "max_cut_levels = " + std::to_string(max_cut_levels) + ": must be in [0, 8]";
+  if (!(std::isfinite(tolerance) && tolerance > 0.0)) return bad(k + "tolerance", tolerance, "must be > 0");
+  if (max_iterations < 1) return k + "max_iterations = " + std::to_string(max_iterations) + ": must be >= 1";
+  if (!(std::isfinite(relaxation) && relaxation > 0.0 && relaxation <= 1.0))
+    return bad(k + "relaxation", relaxation, "must be in (0, 1]");
+  if (threads < 1 || threads > 2) return k + "threads = " + std::to_string(threads) + ": must be 1 or 2";
+  if (!(std::isfinite(mesh_weight) && mesh_weight >= 0.0)) return bad(k + "mesh_weight", mesh_weight, "must be >= 0");
+  return top_motion.validate();
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics

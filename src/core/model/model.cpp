@@ -1,0 +1,490 @@
+#include "mooring_dynamics/core/model/model.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <cmath>
+#include <sstream>
+
+#include "mooring_dynamics/core/model/table.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+/// Returns "key = value: constraint" when `ok` is false, else "".
+std::string check(bool ok, const std::string& key, double value, const std::string& constraint) {
+  if (ok) return {};
+  return key + " = " + fmt(value) + ": " + constraint;
+}
+
+bool finite(double v) { return std::isfinite(v); }
+
+}  // namespace
+
+// --- Material --------------------------------------------------------------------------------
+
+double Material::tension(double eps) const {
+  if (tension_strain.empty()) return EA * eps;
+  return interpolateTable(tension_strain, eps);
+}
+
+double Material::tensionSlope(double eps) const {
+  if (tension_strain.empty()) return EA;
+  return interpolateTableSlope(tension_strain, eps);
+}
+
+double Material::strainAt(double T) const {
+  if (tension_strain.empty()) return T / EA;
+  // Invert the increasing piecewise-linear table (extrapolated linearly at both ends).
+  std::vector<std::pair<double, double>> inverse;
+  inverse.reserve(tension_strain.size());
+  for (const auto& p : tension_strain) inverse.emplace_back(p.second, p.first);
+  return interpolateTable(inverse, T);
+}
+
+// --- Environment -----------------------------------------------------------------------------
+
+double SeabedGrid::depthAt(double x, double y) const {
+  // Fractional grid coordinates clamped to the grid; the cell is the one at or west/south of them.
+  const double fx = std::clamp((x - x0) / dx, 0.0, static_cast<double>(nx - 1));
+  const double fy = std::clamp((y - y0) / dy, 0.0, static_cast<double>(ny - 1));
+  const std::size_t ix = std::min(static_cast<std::size_t>(fx), nx - 2);
+  const std::size_t iy = std::min(static_cast<std::size_t>(fy), ny - 2);
+  const double u = fx - static_cast<double>(ix), v = fy - static_cast<double>(iy);
+  return (1.0 - v) * ((1.0 - u) * at(ix, iy) + u * at(ix + 1, iy)) +
+         v * ((1.0 - u) * at(ix, iy + 1) + u * at(ix + 1, iy + 1));
+}
+
+void SeabedGrid::depthGradient(double x, double y, double& dd_dx, double& dd_dy) const {
+  const double gx = (x - x0) / dx, gy = (y - y0) / dy;
+  const double xmax = static_cast<double>(nx - 1), ymax = static_cast<double>(ny - 1);
+  const bool inside_x = gx > 0.0 && gx < xmax, inside_y = gy > 0.0 && gy < ymax;
+  const double fx = std::clamp(gx, 0.0, xmax), fy = std::clamp(gy, 0.0, ymax);
+  const std::size_t ix = std::min(static_cast<std::size_t>(fx), nx - 2);
+  const std::size_t iy = std::min(static_cast<std::size_t>(fy), ny - 2);
+  const double u = fx - static_cast<double>(ix), v = fy - static_cast<double>(iy);
+  dd_dx = inside_x ? ((1.0 - v) * (at(ix + 1, iy) - at(ix, iy)) + v * (at(ix + 1, iy + 1) - at(ix, iy + 1))) / dx : 0.0;
+  dd_dy = inside_y ? ((1.0 - u) * (at(ix, iy + 1) - at(ix, iy)) + u * (at(ix + 1, iy + 1) - at(ix + 1, iy))) / dy : 0.0;
+}
+
+std::string SeabedGrid::validate() const {
+  const std::string k = "environment.seabed.grid" + (source.empty() ? std::string() : " (" + source + ")") + ".";
+  std::string e;
+  if (!(e = check(finite(x0), k + "x0", x0, "must be finite")).empty()) return e;
+  if (!(e = check(finite(y0), k + "y0", y0, "must be finite")).empty()) return e;
+  if (!(e = check(finite(dx) && dx > 0.0, k + "dx", dx, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(dy) && dy > 0.0, k + "dy", dy, "must be > 0")).empty()) return e;
+  if (nx < 2) return k + "nx = " + std::to_string(nx) + ": must be >= 2 (for a depth varying in x only use seabed.profile)";
+  if (ny < 2) return k + "ny = " + std::to_string(ny) + ": must be >= 2 (for a depth varying in x only use seabed.profile)";
+  if (depths.size() != nx * ny)
+    return k + "depths has " + std::to_string(depths.size()) + " values: must have nx * ny = " +
+           std::to_string(nx * ny);
+  for (std::size_t i = 0; i < depths.size(); ++i) {
+    const std::string r = k + "depths[" + std::to_string(i) + "] (ix = " + std::to_string(i % nx) +
+                          ", iy = " + std::to_string(i / nx) + ")";
+    if (!(e = check(finite(depths[i]) && depths[i] > 0.0, r, depths[i], "must be > 0 (depth, positive down)")).empty())
+      return e;
+  }
+  return {};
+}
+
+double Environment::seabedElevation(double x, double y) const {
+  if (!seabed.grid.empty()) return -seabed.grid.depthAt(x, y);
+  if (seabed.profile.empty()) return -depth;
+  return -interpolateTableClamped(seabed.profile, x);
+}
+
+void Environment::seabedGradient(double x, double y, double& dzdx, double& dzdy) const {
+  dzdx = dzdy = 0.0;
+  if (!seabed.grid.empty()) {
+    seabed.grid.depthGradient(x, y, dzdx, dzdy);
+    dzdx = -dzdx;
+    dzdy = -dzdy;
+    return;
+  }
+  if (seabed.profile.size() < 2) return;
+  if (x <= seabed.profile.front().first || x >= seabed.profile.back().first) return;
+  dzdx = -interpolateTableSlope(seabed.profile, x);
+}
+
+double Environment::seabedElevation(double x) const { return seabedElevation(x, 0.0); }
+
+double Environment::seabedSlope(double x) const {
+  double dzdx, dzdy;
+  seabedGradient(x, 0.0, dzdx, dzdy);
+  return dzdx;
+}
+
+namespace {
+
+/// The interval of a current table (size(), depth(i) [m], comp(i, cx, cy) [m/s]) that depth d
+/// interpolates in: i with depth(i-1) < d <= depth(i), d strictly inside the table; 0 when d
+/// takes an end's value (and for tables of fewer than two points).
+template <class Table>
+std::size_t valueInterval(const Table& table, double d) {
+  const std::size_t n = table.size();
+  if (n < 2 || d <= table.depth(0) || d >= table.depth(n - 1)) return 0;
+  std::size_t i = 1;
+  while (d > table.depth(i)) ++i;
+  return i;
+}
+
+/// Whether valueInterval(table, d) is i > 0, without the search.
+template <class Table>
+bool inValueInterval(const Table& table, std::size_t i, double d) {
+  return d > table.depth(i - 1) && d <= table.depth(i) && d < table.depth(table.size() - 1);
+}
+
+/// The velocity components (not speed and direction) at depth d, linear in interval i.
+template <class Table>
+void interpolateIn(const Table& table, std::size_t i, double d, double& ux, double& uy) {
+  double ax, ay, bx, by;
+  table.comp(i - 1, ax, ay);
+  table.comp(i, bx, by);
+  const double w = (d - table.depth(i - 1)) / (table.depth(i) - table.depth(i - 1));
+  ux = ax + w * (bx - ax);
+  uy = ay + w * (by - ay);
+}
+
+/// The current table's interpolation, shared by Environment and CurrentProfile: linear in depth
+/// between its points and held beyond the first and last. With `slope`, the vertical gradient
+/// d(ux, uy)/dz [1/s] instead: that of the interval interpolated in, the lower one at the last
+/// point (see Environment::currentGradientAt).
+template <class Table>
+void interpolateCurrent(const Table& table, double z, bool slope, double& ux, double& uy) {
+  ux = uy = 0.0;
+  const std::size_t n = table.size();
+  if (n == 0 || (slope && n < 2)) return;
+  const double d = std::max(0.0, -z);
+  if (!slope) {
+    const std::size_t i = valueInterval(table, d);
+    if (i > 0) interpolateIn(table, i, d, ux, uy);
+    else table.comp(n == 1 || d <= table.depth(0) ? 0 : n - 1, ux, uy);
+    return;
+  }
+  if (d <= table.depth(0) || d > table.depth(n - 1)) return;
+  // d in (depth[i-1], depth[i]] uses interval i; du/dz = -du/dd (depth grows downward, z upward).
+  std::size_t i = 1;
+  while (d > table.depth(i)) ++i;
+  double ax, ay, bx, by;
+  table.comp(i - 1, ax, ay);
+  table.comp(i, bx, by);
+  const double dd = table.depth(i) - table.depth(i - 1);  // > 0 (validated)
+  ux = -(bx - ax) / dd;
+  uy = -(by - ay) / dd;
+}
+
+/// Environment::current as interpolateCurrent's table: components from speed and direction.
+struct PointTable {
+  const std::vector<CurrentPoint>& points;
+  std::size_t size() const { return points.size(); }
+  double depth(std::size_t i) const { return points[i].depth; }
+  void comp(std::size_t i, double& cx, double& cy) const {
+    cx = points[i].speed * std::cos(points[i].direction);
+    cy = points[i].speed * std::sin(points[i].direction);
+  }
+};
+
+}  // namespace
+
+void Environment::currentAt(double z, double& ux, double& uy) const {
+  interpolateCurrent(PointTable{current}, z, false, ux, uy);
+}
+
+void Environment::currentGradientAt(double z, double& dux_dz, double& duy_dz) const {
+  interpolateCurrent(PointTable{current}, z, true, dux_dz, duy_dz);
+}
+
+CurrentProfile::CurrentProfile(const std::vector<CurrentPoint>& table) {
+  for (const CurrentPoint& c : table) {
+    depth_.push_back(c.depth);
+    ux_.push_back(c.speed * std::cos(c.direction));
+    uy_.push_back(c.speed * std::sin(c.direction));
+  }
+}
+
+void CurrentProfile::at(double z, double& ux, double& uy) const { interpolateCurrent(*this, z, false, ux, uy); }
+
+void CurrentProfile::atAndAround(double z, double dz, double& ux, double& uy, double& ux_above,
+                                 double& ux_below) const {
+  const double d = std::max(0.0, -z);
+  const std::size_t i = valueInterval(*this, d);
+  if (i > 0) interpolateIn(*this, i, d, ux, uy);
+  else at(z, ux, uy);
+  // A neighbour in the same interval interpolates there; any other takes its own search.
+  auto eastAt = [&](double zq) {
+    const double dq = std::max(0.0, -zq);
+    double e, north;
+    if (i > 0 && inValueInterval(*this, i, dq)) interpolateIn(*this, i, dq, e, north);
+    else at(zq, e, north);
+    return e;
+  };
+  ux_above = eastAt(z + dz);
+  ux_below = eastAt(z - dz);
+}
+
+void CurrentProfile::gradientAt(double z, double& dux_dz, double& duy_dz) const {
+  interpolateCurrent(*this, z, true, dux_dz, duy_dz);
+}
+
+// --- Surface buoy ----------------------------------------------------------------------------
+
+double SurfaceBuoy::submergedVolume(double d) const {
+  const double h = totalHeight();
+  d = std::clamp(d, 0.0, h);
+  const double R = 0.5 * diameter;
+  if (shape == Shape::Sphere) return kPi * d * d * (3.0 * R - d) / 3.0;  // spherical cap
+  return kPi * R * R * d;
+}
+
+double SurfaceBuoy::submergedVolumeSlope(double d) const {
+  const double h = totalHeight();
+  if (d <= 0.0 || d >= h) return 0.0;
+  const double R = 0.5 * diameter;
+  if (shape == Shape::Sphere) return kPi * d * (2.0 * R - d);  // waterplane area
+  return kPi * R * R;
+}
+
+double SurfaceBuoy::submergedArea(double d) const {
+  const double h = totalHeight();
+  d = std::clamp(d, 0.0, h);
+  const double R = 0.5 * diameter;
+  if (shape == Shape::Sphere) {
+    // Circular segment of height d.
+    const double c = std::clamp((R - d) / R, -1.0, 1.0);
+    return R * R * std::acos(c) - (R - d) * std::sqrt(std::max(0.0, 2.0 * R * d - d * d));
+  }
+  return diameter * d;
+}
+
+double SurfaceBuoy::submergedAreaSlope(double d) const {
+  const double h = totalHeight();
+  if (d <= 0.0 || d >= h) return 0.0;
+  const double R = 0.5 * diameter;
+  if (shape == Shape::Sphere) return 2.0 * std::sqrt(std::max(0.0, 2.0 * R * d - d * d));  // chord
+  return diameter;
+}
+
+// --- Options and problem validation ----------------------------------------------------------
+
+std::string StaticOptions::validate() const {
+  std::string e;
+  if (!(e = check(finite(tolerance) && tolerance > 0.0, "solver.static.tolerance", tolerance, "must be > 0")).empty()) return e;
+  if (max_iterations < 1)
+    return "solver.static.max_iterations = " + std::to_string(max_iterations) + ": must be >= 1";
+  if (!(e = check(finite(relaxation) && relaxation > 0.0 && relaxation <= 1.0, "solver.static.relaxation", relaxation,
+                  "must be in (0, 1]")).empty()) return e;
+  if (!(e = check(finite(R2) && R2 > 1.0, "solver.static.R2", R2, "must be > 1")).empty()) return e;
+  if (!(e = check(finite(R1) && R1 > R2, "solver.static.R1", R1, "must be > R2 = " + fmt(R2))).empty()) return e;
+  return {};
+}
+
+double Problem::totalLength() const {
+  double L = 0.0;
+  for (const auto& s : segments) L += s.length;
+  return L;
+}
+
+namespace {
+
+std::string validateMaterial(const Material& m) {
+  const std::string k = "materials." + m.name + ".";
+  std::string e;
+  if (m.tension_strain.empty()) {
+    if (!(e = check(finite(m.EA) && m.EA > 0.0, k + "EA", m.EA, "must be > 0")).empty()) return e;
+  } else {
+    if (m.tension_strain.size() < 2)
+      return k + "tension_strain has " + std::to_string(m.tension_strain.size()) + " rows: needs at least 2";
+    for (std::size_t i = 0; i < m.tension_strain.size(); ++i) {
+      const auto& p = m.tension_strain[i];
+      const std::string r = k + "tension_strain[" + std::to_string(i) + "]";
+      if (!finite(p.first) || !finite(p.second)) return r + " = [" + fmt(p.first) + ", " + fmt(p.second) + "]: must be finite";
+      if (i > 0 && !(p.first > m.tension_strain[i - 1].first))
+        return r + " strain " + fmt(p.first) + ": strains must increase";
+      if (i > 0 && !(p.second > m.tension_strain[i - 1].second))
+        return r + " tension " + fmt(p.second) + ": tensions must increase";
+    }
+  }
+  if (!(e = check(finite(m.EI) && m.EI > 0.0, k + "EI", m.EI, "must be > 0 (the formulation needs bending stiffness; use a small value for ropes and chain)")).empty()) return e;
+  if (!(e = check(finite(m.GJ) && m.GJ >= 0.0, k + "GJ", m.GJ, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.mass) && m.mass >= 0.0, k + "mass", m.mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.added_mass) && m.added_mass >= 0.0, k + "added_mass", m.added_mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.wet_weight), k + "wet_weight", m.wet_weight, "must be finite")).empty()) return e;
+  if (!(e = check(finite(m.diameter) && m.diameter > 0.0, k + "diameter", m.diameter, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(m.cdn) && m.cdn >= 0.0, k + "cdn", m.cdn, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.cdt) && m.cdt >= 0.0, k + "cdt", m.cdt, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.max_strain) && m.max_strain > 0.0, k + "max_strain", m.max_strain, "must be > 0")).empty()) return e;
+  return {};
+}
+
+std::string validateBody(const Body& b) {
+  const std::string k = "bodies." + b.name + ".";
+  std::string e;
+  if (!(e = check(finite(b.mass) && b.mass >= 0.0, k + "mass", b.mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.added_mass) && b.added_mass >= 0.0, k + "added_mass", b.added_mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.wet_weight), k + "wet_weight", b.wet_weight, "must be finite")).empty()) return e;
+  if (!(e = check(finite(b.diameter) && b.diameter >= 0.0, k + "diameter", b.diameter, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.cdn) && b.cdn >= 0.0, k + "cdn", b.cdn, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.cdt) && b.cdt >= 0.0, k + "cdt", b.cdt, "must be >= 0")).empty()) return e;
+  return {};
+}
+
+std::string validateBuoy(const SurfaceBuoy& b) {
+  const std::string k = "top.buoy.";
+  std::string e;
+  if (!(e = check(finite(b.diameter) && b.diameter > 0.0, k + "diameter", b.diameter, "must be > 0")).empty()) return e;
+  if (b.shape == SurfaceBuoy::Shape::Cylinder &&
+      !(e = check(finite(b.height) && b.height > 0.0, k + "height", b.height, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(b.mass) && b.mass >= 0.0, k + "mass", b.mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.added_mass) && b.added_mass >= 0.0, k + "added_mass", b.added_mass, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.cd) && b.cd >= 0.0, k + "cd", b.cd, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.wind_area) && b.wind_area >= 0.0, k + "wind_area", b.wind_area, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.wind_cd) && b.wind_cd >= 0.0, k + "wind_cd", b.wind_cd, "must be >= 0")).empty()) return e;
+  return {};
+}
+
+}  // namespace
+
+std::string Problem::validate() const {
+  std::string e;
+  const Environment& env = environment;
+  if (!(e = check(finite(env.water_density) && env.water_density > 0.0, "environment.water_density", env.water_density, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(env.air_density) && env.air_density >= 0.0, "environment.air_density", env.air_density, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(env.gravity) && env.gravity > 0.0, "environment.gravity", env.gravity, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(env.depth) && env.depth > 0.0, "environment.depth", env.depth, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(env.seabed.stiffness) && env.seabed.stiffness > 0.0, "environment.seabed.stiffness", env.seabed.stiffness, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(env.seabed.damping) && env.seabed.damping >= 0.0, "environment.seabed.damping", env.seabed.damping, "must be >= 0")).empty()) return e;
+  for (std::size_t i = 0; i < env.seabed.profile.size(); ++i) {
+    const auto& p = env.seabed.profile[i];
+    const std::string r = "environment.seabed.profile[" + std::to_string(i) + "]";
+    if (!finite(p.first) || !finite(p.second)) return r + " = [" + fmt(p.first) + ", " + fmt(p.second) + "]: must be finite";
+    if (!(p.second > 0.0)) return r + " depth = " + fmt(p.second) + ": must be > 0";
+    if (i > 0 && !(p.first > env.seabed.profile[i - 1].first)) return r + " x = " + fmt(p.first) + ": x must increase";
+  }
+  if (!env.seabed.grid.empty()) {
+    if (!env.seabed.profile.empty())
+      return "environment.seabed: has both a profile and a grid; give at most one of profile and grid_file";
+    if (!(e = env.seabed.grid.validate()).empty()) return e;
+  }
+  for (std::size_t i = 0; i < env.current.size(); ++i) {
+    const auto& c = env.current[i];
+    const std::string r = "environment.current[" + std::to_string(i) + "]";
+    if (!(e = check(finite(c.depth) && c.depth >= 0.0, r + ".depth", c.depth, "must be >= 0")).empty()) return e;
+    if (i > 0 && !(c.depth > env.current[i - 1].depth)) return r + ".depth = " + fmt(c.depth) + ": depths must increase";
+    if (!(e = check(finite(c.speed) && c.speed >= 0.0, r + ".speed", c.speed, "must be >= 0")).empty()) return e;
+    if (!(e = check(finite(c.direction), r + ".direction_deg", c.direction, "must be finite")).empty()) return e;
+  }
+  if (!(e = check(finite(env.wind_speed) && env.wind_speed >= 0.0, "environment.wind.speed", env.wind_speed, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(env.wind_direction), "environment.wind.direction_deg", env.wind_direction, "must be finite")).empty()) return e;
+  if (!(e = env.waves.validate()).empty()) return e;
+
+  if (materials.empty()) return "materials: at least one material is needed";
+  for (const auto& m : materials)
+    if (!(e = validateMaterial(m)).empty()) return e;
+  for (const auto& b : bodies)
+    if (!(e = validateBody(b)).empty()) return e;
+  if (segments.empty()) return "line: at least one segment is needed";
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const Segment& s = segments[i];
+    const std::string r = "line[" + std::to_string(i) + "]";
+    if (s.material >= materials.size()) return r + ".material index " + std::to_string(s.material) + ": unknown material";
+    if (!(e = check(finite(s.length) && s.length > 0.0, r + ".length", s.length, "must be > 0")).empty()) return e;
+    if (!(e = check(finite(s.spacing) && s.spacing > 0.0, r + ".spacing", s.spacing, "must be > 0")).empty()) return e;
+    for (std::size_t j = 0; j < s.bodies.size(); ++j) {
+      const auto& bp = s.bodies[j];
+      const std::string rb = r + ".bodies[" + std::to_string(j) + "]";
+      if (bp.body >= bodies.size()) return rb + ".body index " + std::to_string(bp.body) + ": unknown body";
+      if (!(e = check(finite(bp.at) && bp.at >= 0.0 && bp.at <= s.length, rb + ".at", bp.at,
+                      "must be within [0, " + fmt(s.length) + "] (the segment length)")).empty()) return e;
+    }
+  }
+  if (!(e = check(finite(anchor_x), "anchor.x", anchor_x, "must be finite")).empty()) return e;
+  if (!(e = check(finite(anchor_y), "anchor.y", anchor_y, "must be finite")).empty()) return e;
+  if (!(e = check(finite(anchor_z) && anchor_z <= 0.0, "anchor.z", anchor_z, "must be <= 0 (z = 0 is the sea surface)")).empty()) return e;
+  if (formulation == Formulation::TwoD) {
+    // The 2-D equations live in the vertical plane y = 0.
+    constexpr const char* kPlanar = "must be 0 with model: 2d (the 2-D line lies in the plane y = 0); use model: 3d";
+    if (!(e = check(anchor_y == 0.0, "anchor.y", anchor_y, kPlanar)).empty()) return e;
+    if (top.type == TopBoundary::Type::Position && !(e = check(top.y == 0.0, "top.position.y", top.y, kPlanar)).empty()) return e;
+    if (top.type == TopBoundary::Type::Force && !(e = check(top.fy == 0.0, "top.force.y", top.fy, kPlanar)).empty()) return e;
+  }
+  const double zb = env.seabedElevation(anchor_x, anchor_y);
+  if (!(e = check(anchor_z >= zb - 1e-6 * env.depth, "anchor.z", anchor_z,
+                  "is below the seabed elevation " + fmt(zb) + " m at anchor.x")).empty()) return e;
+
+  if (lower_end == LowerEnd::Free) {
+    if (formulation != Formulation::ThreeD)
+      return "free_end: a free lower end (towing) needs model: 3d";
+    if (end_body != kNoBody && end_body >= bodies.size())
+      return "free_end.body index " + std::to_string(end_body) + ": unknown body";
+    if (top.type != TopBoundary::Type::Position && top.type != TopBoundary::Type::Buoy)
+      return "top: a line with a free lower end needs top.position (the tow point) or top.buoy (a drifting "
+             "surface buoy); a force or body top leaves the line's position undetermined";
+    if (top.type == TopBoundary::Type::Buoy && dynamics.top_motion.type != TopMotion::Type::Hold &&
+        dynamics.top_motion.type != TopMotion::Type::ForceTable)
+      return "dynamics.top_motion: a drifting buoy (top.buoy with free_end:) moves with the current and the wind; "
+             "only type hold (no extra force) or force_table (an extra force on the buoy) apply";
+  }
+  if (!(e = check(finite(top.tow_vx) && finite(top.tow_vy), "top.tow_velocity", std::hypot(top.tow_vx, top.tow_vy),
+                  "must be finite")).empty()) return e;
+  if ((top.tow_vx != 0.0 || top.tow_vy != 0.0) && lower_end != LowerEnd::Free)
+    return "top.tow_velocity = (" + fmt(top.tow_vx) + ", " + fmt(top.tow_vy) +
+           "): only for a line with a free lower end (free_end:); an anchored line has no steady tow";
+  if ((top.tow_vx != 0.0 || top.tow_vy != 0.0) && top.type == TopBoundary::Type::Buoy)
+    return "top.tow_velocity = (" + fmt(top.tow_vx) + ", " + fmt(top.tow_vy) +
+           "): a drifting buoy is not towed; the statics find its drift velocity";
+  switch (top.type) {
+    case TopBoundary::Type::Force:
+      if (!(e = check(finite(top.fx), "top.force.x", top.fx, "must be finite")).empty()) return e;
+      if (!(e = check(finite(top.fz), "top.force.z", top.fz, "must be finite")).empty()) return e;
+      if (!(e = check(finite(top.fy), "top.force.y", top.fy, "must be finite")).empty()) return e;
+      break;
+    case TopBoundary::Type::Position: {
+      if (!(e = check(finite(top.x), "top.position.x", top.x, "must be finite")).empty()) return e;
+      if (!(e = check(finite(top.z), "top.position.z", top.z, "must be finite")).empty()) return e;
+      if (!(e = check(finite(top.y), "top.position.y", top.y, "must be finite")).empty()) return e;
+      double reach = 0.0;
+      for (const auto& s : segments) reach += s.length * (1.0 + materials[s.material].max_strain);
+      const double dx = top.x - anchor_x, dy = top.y - anchor_y, dz = top.z - anchor_z;
+      const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+      if (!(dist < reach) && lower_end == LowerEnd::Anchor) {
+        const std::string at = formulation == Formulation::TwoD
+                                   ? fmt(top.x) + ", " + fmt(top.z)
+                                   : fmt(top.x) + ", " + fmt(top.y) + ", " + fmt(top.z);
+        return "top.position = (" + at + "): " + fmt(dist) +
+               " m from the anchor, farther than the stretched line can reach (" + fmt(reach) +
+               " m: unstretched length " + fmt(totalLength()) + " m at each material's max_strain)";
+      }
+      break;
+    }
+    case TopBoundary::Type::Buoy:
+      if (!(e = validateBuoy(top.buoy)).empty()) return e;
+      break;
+    case TopBoundary::Type::Body:
+      if (top.body >= bodies.size()) return "top.body index " + std::to_string(top.body) + ": unknown body";
+      if (formulation != Formulation::ThreeD)
+        return "top.body: a subsurface buoy at the top needs model: 3d";
+      if (lower_end != LowerEnd::Anchor)
+        return "top.body with free_end: a line free at both ends under a subsurface body is not supported; a drifting "
+               "system takes a surface buoy at the top (top.buoy)";
+      if (dynamics.top_motion.type != TopMotion::Type::Hold && dynamics.top_motion.type != TopMotion::Type::ForceTable)
+        return "dynamics.top_motion: with top.body the top is free; only type hold (no extra force) or force_table "
+               "(an extra force on the body) apply";
+      break;
+  }
+  if (!(e = static_options.validate()).empty()) return e;
+  return dynamics.validate();
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics

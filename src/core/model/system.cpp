@@ -1,0 +1,126 @@
+#include "mooring_dynamics/core/model/system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+
+namespace mooring_dynamics {
+namespace core {
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+}  // namespace
+
+// --- Problem -------------------------------------------------------------------------------------
+
+Problem SystemProblem::lineProblem(std::size_t i, const std::vector<double>& xyz) const {
+  const SystemLine& l = lines[i];
+  Problem p;
+  p.name = name.empty() ? l.name : name + " / " + l.name;
+  p.formulation = formulation;
+  p.environment = environment;
+  p.materials = materials;
+  p.bodies = bodies;
+  p.segments = l.segments;
+  p.static_options = static_options;
+  if (l.from == SystemLine::kFreeEnd) {
+    p.lower_end = Problem::LowerEnd::Free;
+    p.end_body = l.end_body;
+  } else {
+    p.anchor_x = xyz[3 * l.from];
+    p.anchor_y = xyz[3 * l.from + 1];
+    p.anchor_z = xyz[3 * l.from + 2];
+  }
+  p.top.type = TopBoundary::Type::Position;
+  p.top.x = xyz[3 * l.to];
+  p.top.y = xyz[3 * l.to + 1];
+  p.top.z = xyz[3 * l.to + 2];
+  return p;
+}
+
+std::string SystemProblem::validate() const {
+  if (points.empty()) return "points: at least one point is needed";
+  if (lines.empty()) return "lines: at least one line is needed";
+  const std::size_t np = points.size();
+  std::vector<int> used(np, 0);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const SystemLine& l = lines[i];
+    const std::string k = "lines[" + std::to_string(i) + "] (" + l.name + ")";
+    if (l.to >= np) return k + ".to: unknown point";
+    if (l.from != SystemLine::kFreeEnd && l.from >= np) return k + ".from: unknown point";
+    if (l.from == l.to) return k + ": from and to are the same point (" + points[l.to].name + ")";
+    if (l.segments.empty()) return k + ".segments: at least one segment is needed";
+    if (l.end_body != Problem::kNoBody && l.from != SystemLine::kFreeEnd)
+      return k + ".end_body: only for a line with a free lower end (from: free)";
+    ++used[l.to];
+    if (l.from != SystemLine::kFreeEnd) ++used[l.from];
+  }
+  for (std::size_t p = 0; p < np; ++p) {
+    const SystemPoint& pt = points[p];
+    if (!used[p]) return "points." + pt.name + ": not joined to any line";
+    if (pt.type == SystemPoint::Type::Body && pt.body >= bodies.size())
+      return "points." + pt.name + ".body: unknown body";
+    if (!std::isfinite(pt.x) || !std::isfinite(pt.y) || !std::isfinite(pt.z))
+      return "points." + pt.name + ".position = (" + fmt(pt.x) + ", " + fmt(pt.y) + ", " + fmt(pt.z) +
+             "): must be finite";
+    if (formulation == Formulation::TwoD && pt.y != 0.0)
+      return "points." + pt.name + ".position y = " + fmt(pt.y) +
+             ": must be 0 with model: 2d (the 2-D lines lie in the plane y = 0); use model: 3d";
+  }
+  // One connected piece holding at least one anchor or fixed point (else it floats away:
+  // statically undetermined), found by a flood fill over the lines.
+  std::vector<int> piece(np, -1);
+  std::function<void(std::size_t, int)> fill = [&](std::size_t p, int id) {
+    if (piece[p] >= 0) return;
+    piece[p] = id;
+    for (const SystemLine& l : lines) {
+      if (l.from == SystemLine::kFreeEnd) continue;
+      if (l.from == p) fill(l.to, id);
+      if (l.to == p) fill(l.from, id);
+    }
+  };
+  int pieces = 0;
+  for (std::size_t p = 0; p < np; ++p)
+    if (piece[p] < 0) fill(p, pieces++);
+  if (pieces > 1) {
+    std::string names;
+    for (std::size_t p = 0; p < np; ++p)
+      if (piece[p] != piece[0]) names += (names.empty() ? "" : ", ") + points[p].name;
+    return "lines: the system falls apart in " + std::to_string(pieces) + " pieces; " + names +
+           " are not connected to " + points[0].name + " (solve separate systems in separate files)";
+  }
+  bool support = false;
+  for (const SystemPoint& pt : points) support = support || !pt.free();
+  if (!support)
+    return "points: no anchor or fixed point; a system of free buoys and bodies has no static position "
+           "(a drifting system is solved as a single line with a buoy and a free end)";
+  // The single-line checks of every line at the initial positions (materials, segments, reach).
+  std::vector<double> xyz;
+  for (const SystemPoint& pt : points) xyz.insert(xyz.end(), {pt.x, pt.y, pt.z});
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    Problem p = lineProblem(i, xyz);
+    // Free points may start anywhere; only fixed ends are held to the seabed and reach checks.
+    const bool free_ends = (lines[i].from != SystemLine::kFreeEnd && points[lines[i].from].free()) ||
+                           points[lines[i].to].free();
+    if (free_ends) continue;
+    const std::string e = p.validate();
+    if (!e.empty()) return "lines[" + std::to_string(i) + "] (" + lines[i].name + "): " + e;
+  }
+  return {};
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics

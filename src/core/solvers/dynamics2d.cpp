@@ -1,0 +1,677 @@
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+
+#include "mooring_dynamics/core/solvers/adaptive_mesh.hpp"
+#include "mooring_dynamics/core/solvers/dynamic_run.hpp"
+#include "mooring_dynamics/core/equations/dynamic_interval.hpp"
+#include "mooring_dynamics/core/equations/equations2d_dynamic.hpp"
+#include "mooring_dynamics/core/numerics/fork_join.hpp"
+#include "mooring_dynamics/core/equations/mesh.hpp"
+#include "mooring_dynamics/core/numerics/newton.hpp"
+#include "mooring_dynamics/core/solvers/statics2d.hpp"
+#include "mooring_dynamics/core/model/top_motion.hpp"
+#include "mooring_dynamics/core/numerics/wave_velocity_cache.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+using namespace eq2dyn;
+
+namespace {
+
+using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
+using AD8 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
+constexpr int kAnchorRows = 5;
+constexpr int kTopRows = 3;
+const char* const kVarNames[N] = {"eps", "Sn", "u", "v", "phi", "Omega3", "x", "z"};
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------
+
+struct DynamicSolver2D::Impl {
+  Problem problem;
+  Mesh mesh;
+  WaveField waves;
+  mutable WaveVelocityCache wave_cache;  ///< wave kinematics at the nodes (cos, sin reused)
+  CurrentProfile current;                ///< problem.environment.current, components precomputed
+  /// Workspace of DynamicStepSystem::evaluate: each node's terms (nodeStepTerms), kept between
+  /// steps so that a step does not allocate them.
+  mutable std::vector<NodeTerms> node_terms;
+  GeneralizedAlpha ga;
+  DynamicOptions opt;
+  std::function<TopInput(double)> top;
+  StaticResult statics;
+
+  // Accepted state at time t.
+  double t = 0.0;
+  Eigen::VectorXd Y, Yd;
+  Eigen::VectorXd Yd_prev;      ///< rate before the last accepted step (second-order predictor)
+  double last_dt = 0.0;         ///< size of the last accepted step [s]
+  std::vector<Water> water;     ///< water velocity at each node at time t
+  Eigen::VectorXd S;            ///< spatial rows of each interval at time t (8 per interval)
+  std::vector<double> cos_phi, sin_phi;  ///< of each node's inclination at time t
+
+  double chi[N];
+  Totals totals;
+  BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
+  /// The second thread (dynamics.threads = 2; null with one): assembles and eliminates the
+  /// upper half of the line (inHalves, BandedMatrix::setParallel).
+  std::unique_ptr<ForkJoin> fork;
+  double factored_dt = 0.0;    ///< step size the factorization in newton_matrix belongs to [s]
+
+  int nodes() const { return static_cast<int>(mesh.nodes.size()); }
+
+  /// core::inHalves on this solver's fork (the second thread, if any).
+  template <class F>
+  void inHalves(int m, int end, const F& f) const {
+    core::inHalves(fork.get(), m, end, f);
+  }
+  /// Where the threads are expected to meet in the nodes' water values (set from the static
+  /// shape, balancedWaterSplit): sharedHalves starts from it and moves the meeting with the
+  /// threads' speed, so that a node's wave references stay with one thread but near it.
+  int water_split = 0;
+  /// Where the threads are expected to meet in the interval rows (evaluate; set from the mesh,
+  /// balancedSplit with kJunctionWork; sharedHalves starts from it): a junction's rows
+  /// (automatic differentiation) cost several intervals', and junctions gather where bodies sit,
+  /// near the top of a mooring. The rows between the meeting and the Newton matrix's meeting
+  /// node are assembled by one thread and eliminated by the other (1 KB an interval). No result
+  /// depends on it: every interval's rows are computed alike on either thread.
+  int interval_split = 0;
+  const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
+
+  /// Water at node j, at (x, z) and the time last given to wave_cache.setTime.
+  Water waterAt(int j, double x, double z) const {
+    Water w;
+    double ux, uy;
+    w.z = z;
+    if (current.size() > 1) {
+      // Slope of the piecewise-linear profile (exact inside a table interval), as in statics.
+      constexpr double kDz = 1e-6;  // [m]
+      double up, um;
+      current.atAndAround(z, kDz, ux, uy, up, um);
+      w.dwx_dz = (up - um) / (2.0 * kDz);
+    } else {
+      current.at(z, ux, uy);
+    }
+    w.wx = ux;
+    if (!wave_cache.empty() && z <= 0.0) {
+      double vx, vz;
+      wave_cache.velocity(static_cast<std::size_t>(j), x, z, vx, vz);  // WaveField::velocity(x, 0, z, t)
+      w.wx += vx;
+      w.wz += vz;
+    }
+    return w;
+  }
+
+  void waterField(const Eigen::VectorXd& y, double time, std::vector<Water>& out) const {
+    out.resize(static_cast<std::size_t>(nodes()));
+    wave_cache.setTime(time);
+    for (int j = 0; j < nodes(); ++j) out[static_cast<std::size_t>(j)] = waterAt(j, y[N * j + X], y[N * j + Z]);
+  }
+
+  /// Spatial rows of every interval at the accepted state y (double), and cos, sin of every
+  /// node's inclination there (the next step's previous level). In the halves of the Newton
+  /// iteration (the angles at the meeting node, the intervals at interval_split), on both
+  /// threads when there are two.
+  void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out, std::vector<double>& c,
+                   std::vector<double>& s) const {
+    const int n = nodes();
+    out.setZero(N * (n - 1));
+    c.resize(static_cast<std::size_t>(n));
+    s.resize(static_cast<std::size_t>(n));
+    auto angles = [&](int j0, int j1) {
+      for (int j = j0; j < j1; ++j) sinCos(y[N * j + PHI], s[static_cast<std::size_t>(j)], c[static_cast<std::size_t>(j)]);
+    };
+    // Intervals [j0, j1), each node's load once for the intervals of one material it belongs to
+    // (a half's first node computes its own: the same value as the other half's last).
+    auto intervals = [&](int j0, int j1) {
+      double f1b = 0.0, f2b = 0.0;
+      long load_material = -1;  // that of the load of node j kept from the interval before
+      for (int j = j0; j < j1; ++j) {
+        const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
+        const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+        const double* ya = y.data() + N * j;
+        const double* yb = ya + N;
+        double* r = out.data() + N * j;
+        if (iv.h > 0.0) {
+          const Material& m = problem.materials[iv.material];
+          const NodeView na{ya, c[a], s[a], &w[a]}, nb{yb, c[b], s[b], &w[b]};
+          double f1a = f1b, f2a = f2b;
+          if (load_material != static_cast<long>(iv.material)) nodeLoadValue(problem.environment, m, na, f1a, f2a);
+          nodeLoadValue(problem.environment, m, nb, f1b, f2b);
+          load_material = static_cast<long>(iv.material);
+          intervalSpatialRows(m, iv.h, na, nb, f1a, f2a, f1b, f2b, r);
+        } else {
+          junctionForces(problem, iv, mat(j), mat(j + 1), ya, yb, w[a], r);
+          load_material = -1;
+        }
+      }
+    };
+    const int m = BandedMatrix::meetingNode(n);
+    inHalves(m, n, angles);  // (the intervals need both halves' angles)
+    inHalves(m == 0 ? 0 : interval_split, n - 1, intervals);
+  }
+};
+
+// --- One time step as a Newton system ----------------------------------------------------------
+//
+// Row layout: 5 anchor rows, 8 rows per interval, 3 top rows; 8 unknowns per node. Interval j
+// touches nodes j and j + 1, so the half-bandwidths are kl = 12, ku = 10.
+
+class DynamicStepSystem : public NewtonSystem {
+ public:
+  DynamicStepSystem(const DynamicSolver2D::Impl& im, double t_new, double dt, const TopInput& top)
+      : im_(im), t_(t_new), dt_(dt), top_(top) {
+  }
+
+  int size() const override { return N * im_.nodes(); }
+  int lowerBandwidth() const override { return 12; }
+  int upperBandwidth() const override { return 10; }
+  // Node-by-node elimination of the same matrix (every row couples node j and j + 1 only).
+  int blockSize() const override { return N; }
+  int leadingRows() const override { return kAnchorRows; }
+  double scale(int i) const override { return im_.chi[i % N]; }
+  std::string describe(int i) const override {
+    const std::size_t j = static_cast<std::size_t>(i / N);
+    std::ostringstream os;
+    os << "node " << j << " (s = " << im_.mesh.nodes[j].s << " m) " << kVarNames[i % N];
+    return os.str();
+  }
+  double stepLimit(const Eigen::VectorXd& dY) const override { return stepLimit(dY, 0, size()); }
+  double stepLimit(const Eigen::VectorXd& dY, int first, int end) const override {
+    constexpr double kMaxAngleStep = 0.5;  // [rad], as in statics
+    double largest = 0.0;
+    for (int i = first + PHI; i < end; i += N) largest = std::max(largest, std::abs(dY[i]));
+    return largest > kMaxAngleStep ? kMaxAngleStep / largest : 1.0;
+  }
+
+  /// The Newton loop's vector work in the halves of the two-ended elimination (see evaluate).
+  bool splitsUpdate() const override { return true; }
+
+  /// As in statics: a node off the seabed that would pass below its rest penetration stops there
+  /// (Newton sees no foundation under it and would otherwise cycle through the contact).
+  void conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY) const override {
+    conditionStep(Y, dY, 0, size());
+  }
+  void conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY, int first, int end) const override {
+    const Environment& env = im_.problem.environment;
+    for (int j = first / N; j < end / N; ++j) {
+      const Eigen::Index iz = N * j + Z;
+      const double w = std::max(im_.mat(j).wet_weight, 0.0);
+      const double rest = env.seabedElevation(Y[iz - 1]) - 1.5 * w / env.seabed.stiffness;
+      // Only a node out of contact is stopped; one already on the bottom may go deeper.
+      const double zb = env.seabedElevation(Y[iz - 1]);
+      if (Y[iz] >= zb && Y[iz] + dY[iz] < rest) dY[iz] = rest - Y[iz];
+    }
+  }
+
+  void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override {
+    const int n = im_.nodes();
+    const GeneralizedAlpha& ga = im_.ga;
+    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
+    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
+    R.resize(size());
+    const Eigen::VectorXd& Yp = im_.Y;
+    const Eigen::VectorXd& Ydp = im_.Yd;
+
+    // Anchor (eq. 34): no motion, moment free, fixed position.
+    R[0] = Y[U];
+    R[1] = Y[V];
+    R[2] = Y[OMEGA];
+    R[3] = Y[X] - im_.problem.anchor_x;
+    R[4] = Y[Z] - im_.problem.anchor_z;
+    if (J) {
+      J->setZeroRows(0, kAnchorRows);
+      J->at(0, U) = 1.0;
+      J->at(1, V) = 1.0;
+      J->at(2, OMEGA) = 1.0;
+      J->at(3, X) = 1.0;
+      J->at(4, Z) = 1.0;
+    }
+
+    // The line in two halves, nodes [0, m) and [m, n), as the Newton matrix's two-ended
+    // elimination splits it (both on im_.fork when there is one: each thread then assembles
+    // the rows it eliminates).
+    const int m = BandedMatrix::meetingNode(n);
+    im_.wave_cache.setTime(t_);
+    water_.resize(static_cast<std::size_t>(n));
+    ydw_.resize(Y.size());
+    c_.resize(static_cast<std::size_t>(n));
+    s_.resize(static_cast<std::size_t>(n));
+    // Water at every node, weighted rates (eq. 30) and cos, sin of the inclination.
+    auto waterValues = [&](int j0, int j1) {
+      for (int j = j0; j < j1; ++j) water_[static_cast<std::size_t>(j)] = im_.waterAt(j, Y[N * j + X], Y[N * j + Z]);
+    };
+    auto nodeValues = [&](int j0, int j1) {
+      for (int j = j0; j < j1; ++j) {
+        const std::size_t a = static_cast<std::size_t>(j);
+        for (int k = N * j; k < N * (j + 1); ++k)
+          ydw_[k] = (1.0 - am) * (c1 * (Y[k] - Yp[k]) - c0 * Ydp[k]) + am * Ydp[k];
+        sinCos(Y[N * j + PHI], s_[a], c_[a]);
+      }
+    };
+    // Shared out as the threads go (sharedHalves), from the static shape's guess: every node's
+    // values are its own, whichever thread computes them.
+    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.water_split, n, [&](int j0, int j1, bool) {
+      waterValues(j0, j1);
+      nodeValues(j0, j1);
+    });
+
+    const StepWeights wts{ak, (1.0 - am) * c1};
+    std::vector<NodeTerms>& terms = im_.node_terms;
+    terms.resize(static_cast<std::size_t>(n));
+    terms_material_.assign(static_cast<std::size_t>(n), -1);  // none computed yet
+    // Intervals [j0, j1), a piece of sharedHalves: the terms of node j0 > 0 are also the piece
+    // below's (its last interval's upper node), so a piece computes them in a place of its own,
+    // unless it continues its thread's previous piece, which left them in `terms`.
+    auto intervals = [&](int j0, int j1, bool continued) {
+      double Jl[N][2 * N];
+      NodeTerms first_terms;
+      long first_material = -1;
+      for (int j = j0; j < j1; ++j) {
+        const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
+        const int row = kAnchorRows + N * j;
+        const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+        if (iv.h > 0.0) {
+          // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp), from the terms of
+          // its nodes, each computed once for the intervals of one material it belongs to.
+          const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
+          const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
+          const Material& m_iv = im_.problem.materials[iv.material];
+          auto termsOf = [&](std::size_t node, const NodeView& now) -> const NodeTerms& {
+            const bool own = j0 > 0 && !continued && node == static_cast<std::size_t>(j0);
+            long& material = own ? first_material : terms_material_[node];
+            NodeTerms& t = own ? first_terms : terms[node];
+            if (material != static_cast<long>(iv.material)) {
+              const NodeView prev{Yp.data() + N * node, im_.cos_phi[node], im_.sin_phi[node], &im_.water[node]};
+              nodeStepTerms(im_.problem.environment, m_iv, now, prev, ydw_.data() + N * node, wts, J != nullptr, t);
+              material = static_cast<long>(iv.material);
+            }
+            return t;
+          };
+          const NodeTerms& ta = termsOf(a, na);
+          const NodeTerms& tb = termsOf(b, nb);
+          // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
+          double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
+          intervalStepRows(m_iv, iv.h, na, nb, ta, tb, wts, im_.S.data() + N * j, R.data() + row, J ? Jrows : nullptr);
+          if (J && Jrows == Jl)
+            for (int q = 0; q < N; ++q)
+              for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
+          continue;
+        }
+        // Junction (pin) rows: few, left to automatic differentiation; in double when only the
+        // residual is asked for.
+        if (J) {
+          AD16 r[N];
+          junctionRows(j, iv, Y, c1, c0, r);
+          // With the block structure the 8 rows of 16 entries are written whole (a zero as +0,
+          // as clearing the rows would leave it), else the non-zero entries after clearing.
+          double* const rows = J->blockRow(row);
+          if (!rows) J->setZeroRows(row, N);
+          for (int q = 0; q < N; ++q) {
+            R[row + q] = r[q].value();
+            for (int k = 0; k < 2 * N; ++k) {
+              const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
+              if (rows) rows[2 * N * q + k] = d != 0.0 ? d : 0.0;
+              else if (d != 0.0) J->at(row + q, N * j + k) = d;
+            }
+          }
+        } else {
+          junctionRows(j, iv, Y, c1, c0, R.data() + row);
+        }
+      }
+    };
+    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.interval_split, n - 1, intervals);
+    topRows(Y, R, J);
+  }
+
+  /// The top's rows: moment free, plus prescribed velocity (eq. 34), position or force.
+  void topRows(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) const {
+    const int n = im_.nodes();
+    const int top = N * (n - 1);
+    const int row = kAnchorRows + N * (n - 1);
+    AD8 y[N];
+    for (int k = 0; k < N; ++k) y[k] = AD8(Y[top + k], N, k);
+    AD8 r[kTopRows];
+    if (J) J->setZeroRows(row, kTopRows);
+    r[0] = y[OMEGA];
+    if (top_.force) {
+      AD8 Fx, Fz;
+      internalForce(im_.mat(n - 1), y, Fx, Fz);
+      r[1] = Fx - top_.fx;
+      r[2] = Fz - top_.fz;
+    } else if (im_.opt.top_motion.prescribe_position) {
+      // Velocity of eq. 34 with the position error fed back over a few steps: the top's
+      // position is a constraint on the integral of the line's shape from the anchor, which the
+      // generalized-alpha schemes with rho_inf > 0 do not damp when imposed directly (it blew up
+      // within a second, test_dynamics2d); fed back through the velocity it decays with
+      // time constant kPositionFeedbackSteps * dt (the BASE step: a cut step must not raise the
+      // gain, or an offset becomes a huge velocity) and the drift of the plain velocity
+      // condition vanishes.
+      constexpr double kPositionFeedbackSteps = 5.0;
+      const double kappa = 1.0 / (kPositionFeedbackSteps * im_.opt.dt);
+      AD8 Vx, Vz;
+      globalVelocity(y, Vx, Vz);
+      r[1] = Vx - top_.vx - kappa * (top_.x - y[X]);
+      r[2] = Vz - top_.vz - kappa * (top_.z - y[Z]);
+    } else {
+      AD8 Vx, Vz;
+      globalVelocity(y, Vx, Vz);
+      r[1] = Vx - top_.vx;
+      r[2] = Vz - top_.vz;
+    }
+    for (int q = 0; q < kTopRows; ++q) {
+      R[row + q] = r[q].value();
+      if (J)
+        for (int k = 0; k < N; ++k)
+          if (r[q].derivatives()[k] != 0.0) J->at(row + q, top + k) = r[q].derivatives()[k];
+    }
+  }
+
+  /// Rows r[0..7] of junction interval j at iterate Y, in scalar type S (AD16 for the
+  /// Jacobian, double for the residual alone); c1, c0: the rate of eq. 26, Yd = c1 (Y - Yp) - c0 Ydp.
+  template <class S>
+  void junctionRows(int j, const MeshInterval& iv, const Eigen::VectorXd& Y, double c1, double c0, S* r) const {
+    const Eigen::VectorXd& Yp = im_.Y;
+    const Eigen::VectorXd& Ydp = im_.Yd;
+    const double am = im_.ga.alpha_m, ak = im_.ga.alpha_k;
+    S y[2 * N], ydw[2 * N], yp[2 * N];
+    for (int k = 0; k < 2 * N; ++k) {
+      if constexpr (std::is_same_v<S, double>) y[k] = Y[N * j + k];
+      else y[k] = S(Y[N * j + k], 2 * N, k);
+    }
+    // The inertia of the bodies (junctionInertia) reads node a's u, v, phi at both levels and
+    // their weighted rates only: the other entries of yp and ydw are left unset.
+    for (const int k : {U, V, PHI}) {
+      const int idx = N * j + k;
+      if constexpr (std::is_same_v<S, double>) {
+        yp[k] = Yp[idx];
+      } else {
+        yp[k] = S(Yp[idx]);
+        yp[k].derivatives().setZero(2 * N);
+      }
+      const S yd = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
+      ydw[k] = (1.0 - am) * yd + am * Ydp[idx];  // weighted rate of eq. 30
+    }
+    const Water& wa = water_[static_cast<std::size_t>(j)];
+    // cos, sin of the angles of nodes a and b (now) and of node a (at the previous level) from
+    // the nodes' tables, with the derivatives cos() and sin() give them (angleOf,
+    // equations2d_dynamic.hpp; test_dynamic_interval checks the bits).
+    const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+    const auto angle = [](const S& phi, double c, double s) -> Angle<S> {
+      if constexpr (std::is_same_v<S, double>) {
+        (void)phi;
+        return {c, s};
+      } else {
+        return {S(c, phi.derivatives() * (-s)), S(s, phi.derivatives() * c)};
+      }
+    };
+    const Angle<S> aa = angle(y[PHI], c_[a], s_[a]), ab = angle(y[N + PHI], c_[b], s_[b]);
+    const Angle<S> ap = angle(yp[PHI], im_.cos_phi[a], im_.sin_phi[a]);
+    S sp[N], in1[N], in0[N];
+    junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, aa, ab, wa, sp);
+    junctionInertia(im_.problem, iv, y, aa, ydw, in1);
+    junctionInertia(im_.problem, iv, yp, ap, ydw, in0);
+    junctionConstraints(y, y + N, aa, ab, sp);
+    constexpr int kJunctionWeighted = 2;  // the force balance; the constraints hold at the new level
+    for (int q = 0; q < N; ++q) {
+      if (q < kJunctionWeighted)
+        // Eq. 30 with the mass matrix averaged between the levels (eq. 31) by alpha_k, not the
+        // printed alpha_m: the weighted rate approximates dY/dt at the alpha_k level, and with
+        // alpha_m weights a state-dependent M costs second order (measured slope 1.6 for
+        // lambda_inf = -0.5 on a cable, 2.0 with alpha_k; test_dynamics2d).
+        r[q] = (1.0 - ak) * in1[q] + ak * in0[q] + (1.0 - ak) * sp[q] + ak * im_.S[N * j + q];
+      else
+        r[q] = sp[q];  // constraints at the new time level
+    }
+  }
+
+  /// Interval rows write all their entries (intervalStepRows), the others are zeroed first.
+  bool writesEveryBlockEntry() const override { return true; }
+
+  const std::vector<Water>& water() const { return water_; }
+
+ private:
+  const DynamicSolver2D::Impl& im_;
+  double t_, dt_;
+  TopInput top_;
+  mutable std::vector<Water> water_;
+  std::vector<double> c_, s_;     ///< cos, sin of phi at the current iterate
+  Eigen::VectorXd ydw_;           ///< weighted rates (eq. 30) at the current iterate
+  std::vector<long> terms_material_;  ///< the material each node's terms were computed with (-1: none)
+};
+
+// ------------------------------------------------------------------------------------------------
+
+namespace {
+
+/// Newton state vector (N = 8) from a static result: velocities zero (the line starts at rest).
+Eigen::VectorXd stateFromStatic(const StaticResult& r) {
+  const std::size_t n = r.nodes.size();
+  Eigen::VectorXd Y = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(N * n));
+  for (std::size_t j = 0; j < n; ++j) {
+    double* y = Y.data() + N * j;
+    const NodeState& ns = r.nodes[j];
+    y[EPS] = ns.strain;
+    y[SN] = ns.shear;
+    y[PHI] = ns.angle;
+    y[OMEGA] = ns.curvature;
+    y[X] = ns.x;
+    y[Z] = ns.z;
+  }
+  return Y;
+}
+
+}  // namespace
+
+DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  const std::string err = problem.validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  im.problem = problem;
+  im.opt = problem.dynamics;
+  im.ga = problem.dynamics.scheme;
+  // The dynamic equations have no static cap (eq. 35 caps statics only): start from the
+  // equilibrium of the same seabed model so that the start is at rest.
+  Problem start = problem;
+  start.environment.seabed.static_cap = false;
+  im.mesh = buildMesh(problem);
+  im.statics = solveStaticOnMesh(start, im.mesh, start.static_options);
+  if (im.statics.summary.converged && problem.dynamics.adaptive_mesh) {
+    // Section 3: redistribute the nodes by eq. 22 from the uniform-mesh statics, re-solve.
+    im.mesh = buildAdaptiveMesh(start, im.mesh, im.statics, problem.dynamics.mesh_weight);
+    im.statics = solveStaticOnMesh(start, im.mesh, start.static_options);
+  }
+  if (!im.statics.summary.converged)
+    throw std::runtime_error("the static solution that starts the dynamic run did not converge: " +
+                             im.statics.summary.message);
+  if (problem.environment.waves.type != WaveSpec::Type::None)
+    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
+  im.current = CurrentProfile(problem.environment.current);
+  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
+    im.fork = std::make_unique<ForkJoin>();
+    im.newton_matrix.setParallel(im.fork.get());
+  }
+
+  // Top motion: the 3-D source projected on the x-z plane, started at the static top (y = 0).
+  const NodeState& topNode = im.statics.nodes.back();
+  const TopMotion& tm = problem.dynamics.top_motion;
+  constexpr double kStartMismatch = 0.01;  // [m] a position table must start where statics put the top
+  std::string bad_motion = planarTopMotionError(tm);
+  if (bad_motion.empty()) bad_motion = topMotionStartError(tm, topNode.x, 0.0, topNode.z, kStartMismatch);
+  if (!bad_motion.empty()) throw std::invalid_argument(bad_motion);
+  im.top = [source = makeTopMotion(tm, topNode.x, 0.0, topNode.z, &im.waves)](double t) {
+    const TopState s = source(t);
+    TopInput in;
+    in.force = s.force;
+    in.x = s.x;
+    in.z = s.z;
+    in.vx = s.vx;
+    in.vz = s.vz;
+    in.fx = s.fx;
+    in.fz = s.fz;
+    return in;
+  };
+
+  im.t = 0.0;
+  im.Y = stateFromStatic(im.statics);
+  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
+  im.waterField(im.Y, 0.0, im.water);
+  im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
+  {
+    // In the units of one component's sum (measured on A.2, one thread): a node's water without
+    // the sum (the current table's look-ups, three then, the cache's bookkeeping), and its rates and
+    // angles. A.2 at 0.1 s, timed on one thread: the water phase took 0.71 s in the upper half
+    // against 0.34 s in the lower; split at node 198 of 274 instead of 137, 0.55 and 0.55 s.
+    constexpr double kWaterWork = 40.0, kRestWork = 8.0;
+    std::vector<double> z(static_cast<std::size_t>(im.nodes()));
+    for (int j = 0; j < im.nodes(); ++j) z[static_cast<std::size_t>(j)] = im.Y[N * j + Z];
+    im.water_split = balancedWaterSplit(im.wave_cache, z, BandedMatrix::meetingNode(im.nodes()), kWaterWork + kRestWork, 0.0);
+  }
+  {
+    // The Newton matrix's rows of a junction (pin rows with automatic differentiation) in those
+    // of an interval of a material. Timed per interval on one thread: about 4 times (A.3 and A.2
+    // at 0.1 s: 0.71-0.92 us against 0.18-0.24 us). With two threads the halves of the interval
+    // phase came out even at 3 in both (A.3 0.24 / 0.24 s, A.2 0.43-0.49 / 0.48 s; at 3.5 A.3's
+    // lower half took 0.24-0.29 s against 0.20-0.22): the halves' other work differs.
+    constexpr double kJunctionWork = 3.0;
+    std::vector<double> cost;
+    for (const MeshInterval& iv : im.mesh.intervals) cost.push_back(iv.h > 0.0 ? 1.0 : kJunctionWork);
+    im.interval_split = balancedSplit(cost);
+  }
+
+  // Error scales chi_m of eq. 39.
+  double Tc = 1.0, stiffest = 0.0;
+  for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
+  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
+  im.chi[EPS] = Tc / stiffest;
+  im.chi[SN] = Tc;
+  im.chi[U] = im.chi[V] = 1.0;  // [m/s]
+  im.chi[PHI] = 1.0;            // [rad]
+  im.chi[OMEGA] = 1.0 / std::max(im.mesh.minSpacing(), 1e-3);
+  im.chi[X] = im.chi[Z] = 1.0;  // [m]
+}
+
+DynamicSolver2D::~DynamicSolver2D() = default;
+
+void DynamicSolver2D::setTopInput(std::function<TopInput(double)> source) { impl_->top = std::move(source); }
+
+double DynamicSolver2D::time() const { return impl_->t; }
+const StaticResult& DynamicSolver2D::initialStatic() const { return impl_->statics; }
+DynamicSolver2D::Totals DynamicSolver2D::totals() const { return impl_->totals; }
+
+std::vector<double> DynamicSolver2D::nodeArclengths() const {
+  std::vector<double> s;
+  for (const auto& n : impl_->mesh.nodes) s.push_back(n.s);
+  return s;
+}
+
+StaticResult DynamicSolver2D::snapshot() const {
+  const Impl& im = *impl_;
+  StaticResult res;
+  const int n = im.nodes();
+  res.nodes.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    const double* y = im.Y.data() + N * j;
+    NodeState& ns = res.nodes[static_cast<std::size_t>(j)];
+    ns.s = im.mesh.nodes[static_cast<std::size_t>(j)].s;
+    ns.x = y[X];
+    ns.z = y[Z];
+    ns.tension = im.mat(j).tension(y[EPS]);
+    ns.shear = y[SN];
+    ns.angle = y[PHI];
+    ns.curvature = y[OMEGA];
+    ns.strain = y[EPS];
+    ns.segment = static_cast<int>(im.mesh.nodes[static_cast<std::size_t>(j)].segment);
+  }
+  internalForce(im.mat(n - 1), im.Y.data() + N * (n - 1), res.top_force_x, res.top_force_z);
+  internalForce(im.mat(0), im.Y.data(), res.anchor_force_x, res.anchor_force_z);
+  res.summary.converged = true;
+  return res;
+}
+
+namespace {
+
+/// One attempted step of size dt from the accepted state; on success the state advances.
+bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
+  const double t_new = im.t + dt;
+  // The top's motion at t_new (on this thread: a user's source may not be thread-safe) while the
+  // second thread, if any, takes the wave phases at t_new (WaveVelocityCache::setTime; the step's
+  // first evaluation would otherwise compute them alone, with the second thread waiting).
+  TopInput top;
+  if (im.fork && !im.wave_cache.empty())
+    runBoth(im.fork.get(), [&] { top = im.top(t_new); }, [&] { im.wave_cache.setTime(t_new); });
+  else
+    top = im.top(t_new);
+  DynamicStepSystem sys(im, t_new, dt, top);
+  // Predictor: constant rate; with modified Newton the rate's change over the last step of the
+  // same size is extrapolated too (as in 3-D), which starts the kept Jacobian's linear
+  // iteration closer (A.2 at 0.1 s: 22 543 -> 21 021 iterations). Plain Newton keeps the
+  // constant rate: its first update is not set by the predictor (docs/validation.md).
+  Eigen::VectorXd Y = im.Y + dt * im.Yd;
+  if (im.opt.jacobian_reuse && sameStepSize(im.last_dt, dt) && im.Yd_prev.size() == im.Yd.size())
+    Y += 0.5 * dt * (im.Yd - im.Yd_prev);
+  const NewtonOptions no = stepNewtonOptions(im.opt);
+  // A kept factorization (modified Newton) belongs to one step size.
+  if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
+  NewtonWork work;
+  const SolverSummary s = solveNewton(sys, Y, no, &im.newton_matrix, &work);
+  im.factored_dt = dt;
+  rep.newton_iterations += s.iterations;
+  im.totals.newton_iterations += s.iterations;
+  im.totals.jacobians += work.assemblies;
+  if (!s.converged) {
+    im.newton_matrix.setZero();  // factored at an iterate that did not converge
+    std::ostringstream os;
+    os << "t = " << t_new << " s (dt = " << dt << " s): " << s.message;
+    rep.message = os.str();
+    return false;
+  }
+  // Accept: rates from eq. 26, water and spatial rows at the new level.
+  const double g = im.ga.gamma;
+  im.Yd_prev = im.Yd;
+  im.last_dt = dt;
+  im.Yd = (Y - im.Y) / (g * dt) - ((1.0 - g) / g) * im.Yd;
+  im.Y = Y;
+  im.t = t_new;
+  im.water = sys.water();
+  im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
+  ++rep.steps;
+  ++im.totals.steps;
+  rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
+  return true;
+}
+
+}  // namespace
+
+StepReport DynamicSolver2D::advanceTo(double t_end) {
+  Impl& im = *impl_;
+  // Base steps with the adaptive cutting of section 4.3 (dynamic_run.hpp).
+  return advanceWithCuts(
+      im.t, im.opt.dt, im.opt.max_cut_levels, t_end, [&im](double dt, StepReport& rep) { return tryStep(im, dt, rep); },
+      [&im]() { ++im.totals.cuts; });
+}
+
+double DynamicSolver2D::jacobianFiniteDifferenceError(double dt) const {
+  const Impl& im = *impl_;
+  DynamicStepSystem sys(im, im.t + dt, dt, im.top(im.t + dt));
+  const JacobianCheck c = checkJacobian(sys, im.Y + dt * im.Yd);
+  return c.outside_band ? 1.0 : c.worst;
+}
+
+// ------------------------------------------------------------------------------------------------
+
+DynamicSeries runDynamic(const Problem& problem, const std::function<void(double, double)>& progress) {
+  return runDynamicWith<DynamicSolver2D>(problem, progress);
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics

@@ -1,0 +1,642 @@
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "mooring_dynamics/core/numerics/ad_rows.hpp"
+#include "mooring_dynamics/core/solvers/adaptive_mesh.hpp"
+#include "mooring_dynamics/core/solvers/drifting.hpp"
+#include "mooring_dynamics/core/solvers/dynamic_run.hpp"
+#include "mooring_dynamics/core/numerics/fork_join.hpp"
+#include "mooring_dynamics/core/equations/equations3d.hpp"
+#include "mooring_dynamics/core/equations/equations3d_drifter.hpp"
+#include "mooring_dynamics/core/equations/mesh.hpp"
+#include "mooring_dynamics/core/numerics/newton.hpp"
+#include "mooring_dynamics/core/solvers/statics3d.hpp"
+#include "mooring_dynamics/core/numerics/wave_velocity_cache.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+using namespace eq3d;
+
+namespace {
+using AD32 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
+using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
+// Rows at the ends: anchored, 10 at the anchor and 6 at the top; with a free lower end (towing),
+// 7 at the end (the body's force balance replaces rest and position) and 9 at the top (the tow
+// point's position as well as its velocity). A drifter (free end under a surface buoy) has the
+// same 7 and 9: at the top the buoy's force balance and the kinematics dx_n/dt = V_n.
+constexpr int kAnchorRows = 10;
+constexpr int kTopRows = 6;
+constexpr int kFreeEndRows = 7;
+constexpr int kTowTopRows = 9;
+constexpr int kMaxEndRows = 10;
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------
+
+struct DynamicSolver3D::Impl {
+  Problem problem;
+  Mesh mesh;
+  WaveField waves;
+  mutable WaveVelocityCache wave_cache;  ///< wave kinematics at the nodes (WaveVelocityCache)
+  CurrentProfile current;  ///< problem.environment.current, components precomputed
+  GeneralizedAlpha ga;
+  DynamicOptions opt;
+  std::function<TopState(double)> top;
+  std::function<TopState(double)> bottom;  ///< moving anchor (position, velocity); empty: fixed
+  StaticResult statics;
+
+  double t = 0.0;
+  Eigen::VectorXd Y, Yd;        ///< accepted state and rate at time t
+  std::vector<Water> water;     ///< water velocity at each node at time t
+  Eigen::VectorXd S;            ///< spatial rows 0-5 of each interval at time t
+  double S_end[3] = {0.0, 0.0, 0.0};  ///< free lower end: spatial part of the body balance at time t
+  double S_top[3] = {0.0, 0.0, 0.0};  ///< subsurface top body or drifting buoy: spatial part of its balance at time t
+  double chi[N];
+  Totals totals;
+  BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
+  /// The second thread (dynamics.threads = 2; null with one): assembles and eliminates the
+  /// upper half of the line, as in the 2-D solver.
+  std::unique_ptr<ForkJoin> fork;
+  double factored_dt = 0.0;    ///< step size the factorization in newton_matrix belongs to [s]
+  Eigen::VectorXd Yd_prev;     ///< rate before the last accepted step (second-order predictor)
+  double last_dt = 0.0;        ///< size of the last accepted step [s]
+
+  int nodes() const { return static_cast<int>(mesh.nodes.size()); }
+  const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
+
+  /// Water at node j, at (x, y, z) and the time last given to wave_cache.setTime.
+  Water waterAt(int j, double x, double y, double z) const {
+    Water w;
+    current.at(z, w.w[0], w.w[1]);
+    current.gradientAt(z, w.dw_dz[0], w.dw_dz[1]);
+    w.z = z;
+    if (!wave_cache.empty() && z <= 0.0) {
+      double vx, vy, vz;
+      wave_cache.velocity3(static_cast<std::size_t>(j), x, y, z, vx, vy, vz);  // WaveField::velocity
+      w.w[0] += vx;
+      w.w[1] += vy;
+      w.w[2] += vz;
+    }
+    return w;
+  }
+
+  void waterField(const Eigen::VectorXd& y, double time, std::vector<Water>& out) const {
+    out.resize(static_cast<std::size_t>(nodes()));
+    wave_cache.setTime(time);
+    for (int j = 0; j < nodes(); ++j)
+      out[static_cast<std::size_t>(j)] = waterAt(j, y[N * j + X], y[N * j + eq3d::Y], y[N * j + Z]);
+  }
+
+  /// Rows 0-5 of the spatial part of every interval at state y (double): the rows that eq. 30
+  /// weights between the time levels.
+  void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out) const {
+    const int n = nodes();
+    out.setZero(kInertiaRows * (n - 1));
+    for (int j = 0; j + 1 < n; ++j) {
+      const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
+      const double* ya = y.data() + N * j;
+      double r[N];
+      if (iv.h > 0.0)
+        intervalSpatial(problem.environment, problem.materials[iv.material], iv.h, ya, ya + N,
+                        w[static_cast<std::size_t>(j)], w[static_cast<std::size_t>(j) + 1], r);
+      else
+        junctionForces(problem, iv, mat(j), mat(j + 1), ya, ya + N, w[static_cast<std::size_t>(j)], r);
+      const int rows = iv.h > 0.0 ? kInertiaRows : 3;
+      for (int q = 0; q < rows; ++q) out[kInertiaRows * j + q] = r[q];
+    }
+  }
+
+  /// The parts of the end rows that eq. 30 weights in time, at state y and time `time`.
+  void endRows(const Eigen::VectorXd& y, const std::vector<Water>& w, double time) {
+    if (problem.lower_end == Problem::LowerEnd::Free) freeEndForces(problem, mat(0), y.data(), w[0], S_end);
+    if (problem.top.type == TopBoundary::Type::Body) {
+      const TopState in = top(time);
+      const double extra[3] = {in.force ? in.fx : 0.0, in.force ? in.fy : 0.0, in.force ? in.fz : 0.0};
+      const int n = nodes();
+      topBodyForces(problem, mat(n - 1), y.data() + N * (n - 1), w[static_cast<std::size_t>(n - 1)], extra, S_top);
+    }
+    if (isDrifter(problem)) {
+      const TopState in = top(time);
+      const double extra[3] = {in.force ? in.fx : 0.0, in.force ? in.fy : 0.0, in.force ? in.fz : 0.0};
+      driftBuoyForces(problem.environment, problem.top.buoy, mat(nodes() - 1), y.data() + N * (nodes() - 1), extra,
+                      S_top);
+    }
+  }
+};
+
+// --- One time step as a Newton system ------------------------------------------------------------
+//
+// Row layout as in statics (10 anchor rows, 16 per interval, 6 top rows): kl = 25, ku = 21.
+
+class DynamicStepSystem3D : public NewtonSystem {
+ public:
+  DynamicStepSystem3D(const DynamicSolver3D::Impl& im, double t_new, double dt, const TopState& top)
+      : im_(im), t_(t_new), dt_(dt), top_(top),
+        towed_(im.problem.lower_end == Problem::LowerEnd::Free), drifter_(isDrifter(im.problem)),
+        end_rows_(towed_ ? kFreeEndRows : kAnchorRows), top_rows_(towed_ ? kTowTopRows : kTopRows) {}
+
+  int size() const override { return N * im_.nodes(); }
+  // Interval j's rows start at end_rows_ + N j and touch nodes j, j + 1.
+  int lowerBandwidth() const override { return end_rows_ + N - 1; }
+  int upperBandwidth() const override { return 2 * N - 1 - end_rows_; }
+  // Node-by-node block elimination (BandedMatrix::setBlockStructure).
+  int blockSize() const override { return N; }
+  int leadingRows() const override { return end_rows_; }
+  double scale(int i) const override { return im_.chi[i % N]; }
+  std::string describe(int i) const override {
+    const std::size_t j = static_cast<std::size_t>(i / N);
+    std::ostringstream os;
+    os << "node " << j << " (s = " << im_.mesh.nodes[j].s << " m) " << varName(i % N);
+    return os.str();
+  }
+  double stepLimit(const Eigen::VectorXd& dY) const override { return stepLimit(dY, 0, size()); }
+  double stepLimit(const Eigen::VectorXd& dY, int first, int end) const override {
+    constexpr double kMaxQuaternionStep = 0.25;  // about half a radian, as in statics
+    double largest = 0.0;
+    for (int i = first; i + N <= end; i += N) largest = std::max(largest, dY.segment<4>(i + Q0).norm());
+    return largest > kMaxQuaternionStep ? kMaxQuaternionStep / largest : 1.0;
+  }
+  /// The Newton loop's vector work in the halves of the two-ended elimination (see evaluateAs).
+  bool splitsUpdate() const override { return true; }
+  void conditionStep(const Eigen::VectorXd& Yv, Eigen::VectorXd& dY) const override {
+    conditionStep(Yv, dY, 0, size());
+  }
+  void conditionStep(const Eigen::VectorXd& Yv, Eigen::VectorXd& dY, int first, int end) const override {
+    const Environment& env = im_.problem.environment;
+    for (int j = first / N; j < end / N; ++j) {
+      const Eigen::Index i = N * j;
+      const double w = std::max(im_.mat(j).wet_weight, 0.0);
+      const double zb = env.seabedElevation(Yv[i + X], Yv[i + eq3d::Y]);
+      const double rest = zb - 1.5 * w / env.seabed.stiffness;
+      if (Yv[i + Z] >= zb && Yv[i + Z] + dY[i + Z] < rest) dY[i + Z] = rest - Yv[i + Z];
+    }
+  }
+
+  /// The residual alone is evaluated in double (for Newton iterations that reuse a Jacobian);
+  /// with J, in AutoDiff scalars (AD16 for the end rows, AD32 for the intervals).
+  void evaluate(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) override {
+    if (J)
+      evaluateAs<AD16, AD32>(Yv, R, J);
+    else
+      evaluateAs<double, double>(Yv, R, nullptr);
+  }
+
+  template <class S16, class S32>
+  void evaluateAs(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) {
+    const int n = im_.nodes();
+    R.resize(size());
+    // The line in two halves, nodes [0, m) and [m, n), as the Newton matrix's two-ended
+    // elimination splits it (both on im_.fork when there is one: each thread then assembles
+    // and clears the rows it eliminates, writesEveryBlockEntry).
+    const int m = BandedMatrix::meetingNode(n);
+    im_.wave_cache.setTime(t_);
+    water_.resize(static_cast<std::size_t>(n));
+    inHalves(im_.fork.get(), m, n, [&](int j0, int j1) {
+      for (int j = j0; j < j1; ++j)
+        water_[static_cast<std::size_t>(j)] = im_.waterAt(j, Yv[N * j + X], Yv[N * j + eq3d::Y], Yv[N * j + Z]);
+    });
+    inHalves(im_.fork.get(), m, n - 1, [&](int j0, int j1) {
+      const int first = j0 == 0 ? 0 : end_rows_ + N * j0;
+      const int last = j1 == n - 1 ? size() : end_rows_ + N * j1;
+      if (J) J->setZeroRows(first, last - first);
+      if (j0 == 0) endRows<S16>(Yv, R, J);
+      intervalRows<S32>(Yv, R, J, j0, j1);
+      if (j1 == n - 1) topRows<S16>(Yv, R, J);
+    });
+  }
+
+  /// The generalized-alpha weights of the step: alpha_m, alpha_k, and the rate's
+  /// Yd = c1 (Y - Yp) - c0 Ydp (eq. 26).
+  struct Weights {
+    double am, ak, c1, c0;
+  };
+  Weights weights() const {
+    const double g = im_.ga.gamma;
+    return {im_.ga.alpha_m, im_.ga.alpha_k, 1.0 / (g * dt_), (1.0 - g) / g};
+  }
+
+  /// Every entry of a block-structured J is written or cleared (setZeroRows), half by half.
+  bool writesEveryBlockEntry() const override { return true; }
+
+  /// The lower end's rows (node 0).
+  template <class S16>
+  void endRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
+    const auto [am, ak, c1, c0] = weights();
+    const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
+
+    // Anchor (eq. 34 in 3-D): at rest, fixed, bending-moment free, unit frame, twist held. A free
+    // lower end (towing): the end body's force balance with its inertia, weighted in time like
+    // the junction force rows, then the same moment, frame and twist rows.
+    {
+      S16 y[N], r[kMaxEndRows];
+      for (int k = 0; k < N; ++k) y[k] = variable<S16>(Yv[k], N, k);
+      const double qp[4] = {Yp[Q0], Yp[Q1], Yp[Q2], Yp[Q3]};
+      int k0 = 0;
+      if (towed_) {
+        S16 yd[N], yp[N], in1[3], in0[3];
+        for (int k = 0; k < N; ++k) {
+          yd[k] = (1.0 - am) * (c1 * (y[k] - Yp[k]) - c0 * Ydp[k]) + am * Ydp[k];
+          yp[k] = constant<S16>(Yp[k]);
+        }
+        freeEndForces(im_.problem, im_.mat(0), y, water_[0], r);
+        freeEndInertia(im_.problem, y, yd, in1);
+        freeEndInertia(im_.problem, yp, yd, in0);
+        for (int q = 0; q < 3; ++q) r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S_end[q]);
+        k0 = 3;
+      } else {
+        if (im_.bottom) {
+          // A moving lower end (a line below a free point of a system): its velocity and
+          // position prescribed, as a fixed anchor's are.
+          const TopState b = im_.bottom(t_);
+          S16 V[3];
+          globalVelocity(y, V);
+          r[0] = V[0] - b.vx;
+          r[1] = V[1] - b.vy;
+          r[2] = V[2] - b.vz;
+          r[3] = y[X] - b.x;
+          r[4] = y[eq3d::Y] - b.y;
+          r[5] = y[Z] - b.z;
+        } else {
+          r[0] = y[U1];
+          r[1] = y[U2];
+          r[2] = y[U3];
+          r[3] = y[X] - im_.problem.anchor_x;
+          r[4] = y[eq3d::Y] - im_.problem.anchor_y;
+          r[5] = y[Z] - im_.problem.anchor_z;
+        }
+        k0 = 6;
+      }
+      r[k0] = y[O2];
+      r[k0 + 1] = y[O3];
+      r[k0 + 2] = normDefect(y);
+      r[k0 + 3] = twistGauge(qp, y);
+      scatter(r, end_rows_, 0, 0, N, R, J);
+    }
+  }
+
+  /// The rows of intervals [j0, j1).
+  template <class S32>
+  void intervalRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1) const {
+    const auto [am, ak, c1, c0] = weights();
+    const Environment& env = im_.problem.environment;
+    const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
+    for (int j = j0; j < j1; ++j) {
+      const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
+      const int row = end_rows_ + N * j;
+      S32 y[2 * N], ydw[2 * N], yp[2 * N];
+      for (int k = 0; k < 2 * N; ++k) {
+        const int idx = N * j + k;
+        y[k] = variable<S32>(Yv[idx], 2 * N, k);
+        const S32 yd = c1 * (y[k] - Yp[idx]) - c0 * Ydp[idx];
+        ydw[k] = (1.0 - am) * yd + am * Ydp[idx];  // weighted rate of eq. 30
+        yp[k] = constant<S32>(Yp[idx]);
+      }
+      const Water& wa = water_[static_cast<std::size_t>(j)];
+      const Water& wb = water_[static_cast<std::size_t>(j) + 1];
+      const Water& wpa = im_.water[static_cast<std::size_t>(j)];
+      const Water& wpb = im_.water[static_cast<std::size_t>(j) + 1];
+      S32 r[N], in1[kInertiaRows], in0[kInertiaRows];
+      int weighted;
+      if (iv.h > 0.0) {
+        const Material& m = im_.problem.materials[iv.material];
+        intervalSpatial(env, m, iv.h, y, y + N, wa, wb, r);
+        // Mass matrix at both levels averaged by alpha_k (docs/method.md: not eq. 31's alpha_m).
+        intervalInertia(env, m, iv.h, y, y + N, ydw, ydw + N, wa, wb, in1);
+        intervalInertia(env, m, iv.h, yp, yp + N, ydw, ydw + N, wpa, wpb, in0);
+        weighted = kInertiaRows;
+      } else {
+        junctionForces(im_.problem, iv, im_.mat(j), im_.mat(j + 1), y, y + N, wa, r);
+        junctionConstraints(im_.mat(j), im_.mat(j + 1), y, y + N, r);
+        junctionInertia(im_.problem, iv, y, ydw, in1);
+        junctionInertia(im_.problem, iv, yp, ydw, in0);
+        weighted = 3;
+      }
+      for (int q = 0; q < weighted; ++q)
+        r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S[kInertiaRows * j + q]);
+      scatter(r, N, row, N * j, 2 * N, R, J);
+    }
+  }
+
+  /// The top's rows (the last node).
+  template <class S16>
+  void topRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
+    const int n = im_.nodes();
+    const auto [am, ak, c1, c0] = weights();
+    const Environment& env = im_.problem.environment;
+    const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
+    // Top: moment free, plus prescribed velocity (eq. 34), velocity with position feedback, or
+    // force; a tow point (free lower end) also has its position prescribed.
+    const int top = N * (n - 1);
+    S16 y[N], r[kTowTopRows];
+    for (int k = 0; k < N; ++k) y[k] = variable<S16>(Yv[top + k], N, k);
+    r[0] = y[O1];
+    r[1] = y[O2];
+    r[2] = y[O3];
+    if (drifter_) {
+      // Drifting buoy: its force balance with inertia, weighted in time like the subsurface
+      // body's rows; then the top node's kinematics dx_n/dt = V_n in generalized-alpha form (the
+      // weighted rate of x_n against the alpha_k-weighted global velocity), which with both ends
+      // free is all that fixes where the line is.
+      S16 yd[N], ydw[N], yp[N], sp[3], in1[3], in0[3], V1[3], V0[3];
+      for (int k = 0; k < N; ++k) {
+        yd[k] = c1 * (y[k] - Yp[top + k]) - c0 * Ydp[top + k];
+        ydw[k] = (1.0 - am) * yd[k] + am * Ydp[top + k];
+        yp[k] = constant<S16>(Yp[top + k]);
+      }
+      const double extra[3] = {top_.force ? top_.fx : 0.0, top_.force ? top_.fy : 0.0, top_.force ? top_.fz : 0.0};
+      const SurfaceBuoy& b = im_.problem.top.buoy;
+      driftBuoyForces(env, b, im_.mat(n - 1), y, extra, sp);
+      driftBuoyInertia(b, y, ydw, in1);
+      driftBuoyInertia(b, yp, ydw, in0);
+      globalVelocity(y, V1);
+      globalVelocity(yp, V0);
+      for (int i = 0; i < 3; ++i) {
+        r[3 + i] = (1.0 - ak) * (in1[i] + sp[i]) + ak * (in0[i] + im_.S_top[i]);
+        r[6 + i] = ydw[X + i] - ((1.0 - ak) * V1[i] + ak * V0[i]);
+      }
+    } else if (im_.problem.top.type == TopBoundary::Type::Body) {
+      // Subsurface buoy: its force balance with inertia, weighted in time like the junction
+      // rows; a force table adds an external force on the body.
+      S16 yd[N], yp[N], sp[3], in1[3], in0[3];
+      for (int k = 0; k < N; ++k) {
+        yd[k] = (1.0 - am) * (c1 * (y[k] - Yp[top + k]) - c0 * Ydp[top + k]) + am * Ydp[top + k];
+        yp[k] = constant<S16>(Yp[top + k]);
+      }
+      const double extra[3] = {top_.force ? top_.fx : 0.0, top_.force ? top_.fy : 0.0, top_.force ? top_.fz : 0.0};
+      topBodyForces(im_.problem, im_.mat(n - 1), y, water_[static_cast<std::size_t>(n - 1)], extra, sp);
+      topBodyInertia(im_.problem, y, yd, in1);
+      topBodyInertia(im_.problem, yp, yd, in0);
+      for (int i = 0; i < 3; ++i) r[3 + i] = (1.0 - ak) * (in1[i] + sp[i]) + ak * (in0[i] + im_.S_top[i]);
+    } else if (top_.force) {
+      S16 F[3];
+      internalForce(im_.mat(n - 1), y, F);
+      r[3] = F[0] - top_.fx;
+      r[4] = F[1] - top_.fy;
+      r[5] = F[2] - top_.fz;
+    } else {
+      S16 V[3];
+      globalVelocity(y, V);
+      const double v[3] = {top_.vx, top_.vy, top_.vz};
+      const double x[3] = {top_.x, top_.y, top_.z};
+      // Position feedback over a few base steps, as in 2-D (docs/method.md, "Top boundary").
+      constexpr double kPositionFeedbackSteps = 5.0;
+      const double kappa = im_.opt.top_motion.prescribe_position && !towed_
+                               ? 1.0 / (kPositionFeedbackSteps * im_.opt.dt)
+                               : 0.0;
+      for (int i = 0; i < 3; ++i) r[3 + i] = V[i] - v[i] - kappa * (x[i] - y[X + i]);
+      if (towed_)
+        for (int i = 0; i < 3; ++i) r[6 + i] = y[X + i] - x[i];
+    }
+    scatter(r, top_rows_, end_rows_ + N * (n - 1), top, N, R, J);
+  }
+
+  const std::vector<Water>& water() const { return water_; }
+
+ private:
+  const DynamicSolver3D::Impl& im_;
+  double t_, dt_;
+  TopState top_;
+  bool towed_;
+  bool drifter_;  ///< free end under a surface buoy: the buoy's balance and kinematics at the top
+  int end_rows_, top_rows_;
+  mutable std::vector<Water> water_;
+};
+
+// ------------------------------------------------------------------------------------------------
+
+DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  const std::string err = problem.validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  im.problem = problem;
+  im.opt = problem.dynamics;
+  im.ga = problem.dynamics.scheme;
+  im.mesh = buildMesh(problem);
+  // A towed line starts from the steady tow at the tow point's initial velocity (section 7.1:
+  // "steady tow, then the manoeuvre"): statics in the frame moving with it, then every node given
+  // that velocity, which is a steady state of the dynamic equations.
+  // A drifter starts from its steady drift: the statics find the drift velocity V_d, and every
+  // node moves at it.
+  const bool drifter = isDrifter(problem);
+  const bool towed = problem.lower_end == Problem::LowerEnd::Free && !drifter;
+  Problem start = problem;
+  double V0[3] = {0.0, 0.0, 0.0};
+  if (towed) {
+    const TopState s0 = makeTopMotion(problem.dynamics.top_motion, problem.top.x, problem.top.y, problem.top.z,
+                                      nullptr)(0.0);
+    constexpr double kVelocityMismatch = 1e-6;  // [m/s]
+    const bool given = problem.top.tow_vx != 0.0 || problem.top.tow_vy != 0.0;
+    if (given && std::hypot(problem.top.tow_vx - s0.vx, problem.top.tow_vy - s0.vy) > kVelocityMismatch)
+      throw std::invalid_argument("top.tow_velocity = (" + std::to_string(problem.top.tow_vx) + ", " +
+                                  std::to_string(problem.top.tow_vy) + ") m/s: differs from the top motion's velocity at "
+                                  "t = 0, (" + std::to_string(s0.vx) + ", " + std::to_string(s0.vy) +
+                                  ") m/s; leave it out to start from the motion's");
+    start.top.tow_vx = V0[0] = s0.vx;
+    start.top.tow_vy = V0[1] = s0.vy;
+  }
+  StaticState3D st = solveStatic3DOnMesh(start, im.mesh, start.static_options);
+  if (st.result.summary.converged && problem.dynamics.adaptive_mesh) {
+    // Section 3: redistribute the nodes by eq. 22. The curvature fed to eq. 21 is the magnitude
+    // of the bending curvature (Omega2, Omega3) with the sign of Omega3, which is the 2-D
+    // Omega3 for a planar line.
+    StaticResult shape = st.result;
+    for (auto& ns : shape.nodes)
+      ns.curvature = std::copysign(std::hypot(ns.curvature, ns.curvature_b), ns.curvature);
+    im.mesh = buildAdaptiveMesh(start, im.mesh, shape, problem.dynamics.mesh_weight);
+    st = solveStatic3DOnMesh(start, im.mesh, start.static_options);
+  }
+  if (!st.result.summary.converged)
+    throw std::runtime_error("the 3-D static solution that starts the dynamic run did not converge: " +
+                             st.result.summary.message);
+  im.statics = st.result;
+  if (drifter) {
+    V0[0] = st.result.drift_vx;
+    V0[1] = st.result.drift_vy;
+  }
+  if (problem.environment.waves.type != WaveSpec::Type::None)
+    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size(), true);
+  im.current = CurrentProfile(problem.environment.current);
+  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
+    im.fork = std::make_unique<ForkJoin>();
+    im.newton_matrix.setParallel(im.fork.get());
+  }
+
+  const NodeState& topNode = im.statics.nodes.back();
+  const TopMotion& tm = problem.dynamics.top_motion;
+  constexpr double kStartMismatch = 0.01;  // [m] a position table must start where statics put the top
+  const std::string bad = topMotionStartError(tm, topNode.x, topNode.y, topNode.z, kStartMismatch);
+  if (!bad.empty()) throw std::invalid_argument(bad);
+  im.top = makeTopMotion(tm, topNode.x, topNode.y, topNode.z, &im.waves);
+
+  im.t = 0.0;
+  im.Y = st.Y;
+  if (towed || drifter) {
+    for (int j = 0; j < im.nodes(); ++j) {
+      double* y = im.Y.data() + N * j;
+      double R[9];
+      quat::matrix(y + Q0, R);
+      quat::toLocal(R, V0, y + U1);
+    }
+  }
+  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
+  if (drifter) {
+    // The drifter's top kinematics integrate the position rate: start it at V_d (every node
+    // moves so), else the first step loses (1 - gamma) dt V_d of the drift.
+    for (int j = 0; j < im.nodes(); ++j)
+      for (int i = 0; i < 3; ++i) im.Yd[N * j + X + i] = V0[i];
+  }
+  im.waterField(im.Y, 0.0, im.water);
+  im.spatialRows(im.Y, im.water, im.S);
+  im.endRows(im.Y, im.water, 0.0);
+
+  // Error scales chi_m of eq. 39, as in 2-D.
+  double Tc = 1.0, stiffest = 0.0;
+  for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
+  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
+  im.chi[EPS] = Tc / stiffest;
+  im.chi[S2] = im.chi[S3] = Tc;
+  im.chi[U1] = im.chi[U2] = im.chi[U3] = 1.0;  // [m/s]
+  im.chi[O1] = im.chi[O2] = im.chi[O3] = 1.0 / std::max(im.mesh.minSpacing(), 1e-3);
+  im.chi[Q0] = im.chi[Q1] = im.chi[Q2] = im.chi[Q3] = 1.0;
+  im.chi[X] = im.chi[eq3d::Y] = im.chi[Z] = 1.0;  // [m]
+}
+
+DynamicSolver3D::~DynamicSolver3D() = default;
+
+void DynamicSolver3D::setTopInput(std::function<TopState(double)> source) { impl_->top = std::move(source); }
+void DynamicSolver3D::setLowerEndInput(std::function<TopState(double)> source) {
+  if (impl_->problem.lower_end == Problem::LowerEnd::Free)
+    throw std::invalid_argument("setLowerEndInput: the line's lower end is free; it has no anchor to move");
+  impl_->bottom = std::move(source);
+}
+double DynamicSolver3D::time() const { return impl_->t; }
+const StaticResult& DynamicSolver3D::initialStatic() const { return impl_->statics; }
+DynamicSolver3D::Totals DynamicSolver3D::totals() const { return impl_->totals; }
+
+std::vector<double> DynamicSolver3D::nodeArclengths() const {
+  std::vector<double> s;
+  for (const auto& n : impl_->mesh.nodes) s.push_back(n.s);
+  return s;
+}
+
+StaticResult DynamicSolver3D::snapshot() const {
+  StaticResult r = staticResult3DFromState(impl_->problem, impl_->mesh, impl_->Y);
+  r.summary.converged = true;
+  return r;
+}
+
+namespace {
+
+/// One attempted step of size dt from the accepted state; on success the state advances.
+bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
+  const double t_new = im.t + dt;
+  DynamicStepSystem3D sys(im, t_new, dt, im.top(t_new));
+  // Predictor: constant rate; with modified Newton (smooth problems) the rate's change over the
+  // last step of the same size is extrapolated too, which starts the iteration closer.
+  Eigen::VectorXd Yv = im.Y + dt * im.Yd;
+  if (im.opt.jacobian_reuse && sameStepSize(im.last_dt, dt) && im.Yd_prev.size() == im.Yd.size())
+    Yv += 0.5 * dt * (im.Yd - im.Yd_prev);
+  // A kept factorization belongs to one step size (the matrix holds 1 / (gamma dt)).
+  if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
+  const NewtonOptions no = stepNewtonOptions(im.opt);
+  NewtonWork work;
+  const SolverSummary s = solveNewton(sys, Yv, no, &im.newton_matrix, &work);
+  im.factored_dt = dt;
+  rep.newton_iterations += s.iterations;
+  im.totals.newton_iterations += s.iterations;
+  im.totals.jacobians += work.assemblies;
+  if (!s.converged) {
+    im.newton_matrix.setZero();  // factored at an iterate that did not converge
+    std::ostringstream os;
+    os << "t = " << t_new << " s (dt = " << dt << " s): " << s.message;
+    rep.message = os.str();
+    return false;
+  }
+  const double g = im.ga.gamma;
+  im.Yd_prev = im.Yd;
+  im.last_dt = dt;
+  im.Yd = (Yv - im.Y) / (g * dt) - ((1.0 - g) / g) * im.Yd;  // eq. 26
+  im.Y = Yv;
+  im.t = t_new;
+  im.water = sys.water();
+  im.spatialRows(im.Y, im.water, im.S);
+  im.endRows(im.Y, im.water, im.t);
+  ++rep.steps;
+  ++im.totals.steps;
+  rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
+  return true;
+}
+
+}  // namespace
+
+StepReport DynamicSolver3D::advanceTo(double t_end) {
+  Impl& im = *impl_;
+  return advanceWithCuts(
+      im.t, im.opt.dt, im.opt.max_cut_levels, t_end, [&im](double dt, StepReport& rep) { return tryStep(im, dt, rep); },
+      [&im]() { ++im.totals.cuts; });
+}
+
+double DynamicSolver3D::jacobianFiniteDifferenceError(double dt) const {
+  const Impl& im = *impl_;
+  DynamicStepSystem3D sys(im, im.t + dt, dt, im.top(im.t + dt));
+  const JacobianCheck c = checkJacobian(sys, im.Y + dt * im.Yd);
+  return c.outside_band ? 1.0 : c.worst;
+}
+
+struct DynamicSolver3D::Saved {
+  double t = 0.0;
+  Eigen::VectorXd Y, Yd, Yd_prev, S;
+  std::vector<Water> water;
+  double S_end[3] = {0.0, 0.0, 0.0}, S_top[3] = {0.0, 0.0, 0.0};
+  double last_dt = 0.0;
+  Totals totals;
+};
+
+std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
+  const Impl& im = *impl_;
+  auto s = std::make_shared<Saved>();
+  s->t = im.t;
+  s->Y = im.Y;
+  s->Yd = im.Yd;
+  s->Yd_prev = im.Yd_prev;
+  s->S = im.S;
+  s->water = im.water;
+  for (int i = 0; i < 3; ++i) {
+    s->S_end[i] = im.S_end[i];
+    s->S_top[i] = im.S_top[i];
+  }
+  s->last_dt = im.last_dt;
+  s->totals = im.totals;
+  return s;
+}
+
+void DynamicSolver3D::restore(const Saved& s) {
+  Impl& im = *impl_;
+  im.t = s.t;
+  im.Y = s.Y;
+  im.Yd = s.Yd;
+  im.Yd_prev = s.Yd_prev;
+  im.S = s.S;
+  im.water = s.water;
+  for (int i = 0; i < 3; ++i) {
+    im.S_end[i] = s.S_end[i];
+    im.S_top[i] = s.S_top[i];
+  }
+  im.last_dt = s.last_dt;
+  im.totals = s.totals;
+  // A kept factorization (modified Newton) stays: it is still a Jacobian of this step size.
+}
+
+DynamicSeries runDynamic3D(const Problem& problem, const std::function<void(double, double)>& progress) {
+  return runDynamicWith<DynamicSolver3D>(problem, progress);
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics

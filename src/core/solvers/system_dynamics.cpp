@@ -1,0 +1,308 @@
+#include "mooring_dynamics/core/solvers/system_dynamics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+#include "mooring_dynamics/core/equations/equations2d.hpp"
+#include "mooring_dynamics/core/model/top_motion.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+namespace {
+// Newmark's trapezoidal rule for the points: second order, no numerical damping (the lines'
+// generalized-alpha damps their own high frequencies).
+constexpr double kGamma = 0.5;
+constexpr double kBeta = 0.25;
+constexpr int kMaxPointIterations = 25;
+// The point iteration stops on a force residual below this fraction of the largest force on a
+// point (line pulls and weight): far below the lines' own Newton tolerance of 1e-6.
+constexpr double kForceTolerance = 1e-7;
+constexpr double kFdStep = 1e-6;  // [m] finite-difference step of a point coordinate
+}  // namespace
+
+struct SystemDynamics::Impl {
+  SystemProblem system;
+  DynamicOptions opt;
+  SystemStaticResult statics;
+  std::vector<std::unique_ptr<DynamicSolver3D>> lines;
+  std::vector<std::size_t> free_pts;                 ///< point indices of the free points
+  std::vector<std::vector<std::size_t>> lines_at;    ///< lines with an end at each point
+  std::vector<std::function<std::array<double, 3>(double)>> forces;
+  // Point state at time t: position, velocity, acceleration (3 per point, all points).
+  double t = 0.0;
+  Eigen::VectorXd X, V, A;
+  Eigen::MatrixXd J;  ///< kept point Jacobian (free points x free points, 3 each)
+  long iterations = 0, line_steps = 0;
+
+  double mass(std::size_t p) const {
+    const SystemPoint& pt = system.points[p];
+    if (pt.type == SystemPoint::Type::Buoy) return pt.buoy.mass + pt.buoy.added_mass;
+    const Body& b = system.bodies[pt.body];
+    return b.mass + b.added_mass;
+  }
+
+  /// A free point's own load at position x, velocity v and time `time` [N].
+  void load(std::size_t p, const double* x, const double* v, double time, double* F) const {
+    const SystemPoint& pt = system.points[p];
+    const Environment& env = system.environment;
+    double ux, uy;
+    if (pt.type == SystemPoint::Type::Buoy) {
+      const SurfaceBuoy& b = pt.buoy;
+      const double d = -x[2];
+      env.currentAt(0.0, ux, uy);
+      const double rx = ux - v[0], ry = uy - v[1], r = std::hypot(rx, ry);
+      const double q = 0.5 * env.water_density * b.cd * b.submergedArea(d);
+      const double wx = env.wind_speed * std::cos(env.wind_direction) - v[0];
+      const double wy = env.wind_speed * std::sin(env.wind_direction) - v[1];
+      const double w = 0.5 * env.air_density * b.wind_cd * b.wind_area * std::hypot(wx, wy);
+      F[0] = q * r * rx + w * wx;
+      F[1] = q * r * ry + w * wy;
+      F[2] = env.water_density * env.gravity * b.submergedVolume(d) - b.mass * env.gravity;
+    } else {
+      const Body& b = system.bodies[pt.body];
+      env.currentAt(x[2], ux, uy);
+      const double r[3] = {ux - v[0], uy - v[1], -v[2]};
+      const double rm = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+      const double q = 0.5 * env.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter * b.cdn;
+      for (int i = 0; i < 3; ++i) F[i] = q * rm * r[i];
+      F[2] -= b.wet_weight;
+    }
+    if (forces[p]) {
+      const std::array<double, 3> f = forces[p](time);
+      for (int i = 0; i < 3; ++i) F[i] += f[i];
+    }
+  }
+};
+
+SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  const std::string e = system.validate();
+  if (!e.empty()) throw std::invalid_argument(e);
+  const std::string eo = options.validate();
+  if (!eo.empty()) throw std::invalid_argument(eo);
+  if (options.threads != 1)  // (a second thread per line would have them compete for the cores)
+    throw std::invalid_argument("dynamics.threads = " + std::to_string(options.threads) +
+                                ": the lines of a system run on one thread (must be 1)");
+  im.system = system;
+  im.system.formulation = Formulation::ThreeD;  // the lines run on the 3-D solver
+  im.opt = options;
+  im.statics = solveSystemStatic(im.system);
+  if (!im.statics.summary.converged)
+    throw std::runtime_error("the system's statics that start the run did not converge: " +
+                             im.statics.summary.message);
+  const std::size_t np = system.points.size();
+  im.X.resize(static_cast<Eigen::Index>(3 * np));
+  for (std::size_t p = 0; p < np; ++p) {
+    im.X[3 * p] = im.statics.points[p].x;
+    im.X[3 * p + 1] = im.statics.points[p].y;
+    im.X[3 * p + 2] = im.statics.points[p].z;
+    if (system.points[p].free()) im.free_pts.push_back(p);
+  }
+  im.V = Eigen::VectorXd::Zero(im.X.size());
+  im.A = Eigen::VectorXd::Zero(im.X.size());
+  im.forces.resize(np);
+  im.lines_at.resize(np);
+  std::vector<double> xyz(im.X.data(), im.X.data() + im.X.size());
+  for (std::size_t i = 0; i < system.lines.size(); ++i) {
+    Problem p = im.system.lineProblem(i, xyz);
+    p.dynamics = options;
+    p.dynamics.top_motion = TopMotion{};
+    p.dynamics.top_motion.prescribe_position = true;  // the top follows its point
+    if (p.dynamics.duration <= 0.0) p.dynamics.duration = options.dt;
+    p.dynamics.record_s.clear();
+    im.lines.push_back(std::make_unique<DynamicSolver3D>(p));
+    im.lines_at[system.lines[i].to].push_back(i);
+    if (system.lines[i].from != SystemLine::kFreeEnd) im.lines_at[system.lines[i].from].push_back(i);
+  }
+}
+
+SystemDynamics::~SystemDynamics() = default;
+
+void SystemDynamics::setPointForce(std::size_t point, std::function<std::array<double, 3>(double)> force) {
+  if (point >= impl_->forces.size()) throw std::out_of_range("setPointForce: no point " + std::to_string(point));
+  impl_->forces[point] = std::move(force);
+}
+
+double SystemDynamics::time() const { return impl_->t; }
+const SystemStaticResult& SystemDynamics::initialStatic() const { return impl_->statics; }
+long SystemDynamics::pointIterations() const { return impl_->iterations; }
+long SystemDynamics::lineSteps() const { return impl_->line_steps; }
+StaticResult SystemDynamics::line(std::size_t i) const { return impl_->lines.at(i)->snapshot(); }
+
+std::array<double, 3> SystemDynamics::pointVelocity(std::size_t p) const {
+  return {impl_->V[3 * p], impl_->V[3 * p + 1], impl_->V[3 * p + 2]};
+}
+
+std::vector<SystemPointResult> SystemDynamics::points() const {
+  const Impl& im = *impl_;
+  std::vector<SystemPointResult> out;
+  for (std::size_t p = 0; p < im.system.points.size(); ++p) {
+    SystemPointResult r;
+    r.name = im.system.points[p].name;
+    r.x = im.X[3 * p];
+    r.y = im.X[3 * p + 1];
+    r.z = im.X[3 * p + 2];
+    for (std::size_t i = 0; i < im.system.lines.size(); ++i) {
+      const SystemLine& l = im.system.lines[i];
+      const bool top = l.to == p, bottom = l.from == p;
+      if (!top && !bottom) continue;
+      const StaticResult s = im.lines[i]->snapshot();
+      r.fx += top ? -s.top_force_x : s.anchor_force_x;
+      r.fy += top ? -s.top_force_y : s.anchor_force_y;
+      r.fz += top ? -s.top_force_z : s.anchor_force_z;
+    }
+    if (im.system.points[p].type == SystemPoint::Type::Buoy) r.buoy_draft = -r.z;
+    out.push_back(r);
+  }
+  return out;
+}
+
+bool SystemDynamics::advanceTo(double t_end, std::string* message) {
+  Impl& im = *impl_;
+  const double eps = 1e-9 * im.opt.dt;
+  const int m = static_cast<int>(3 * im.free_pts.size());
+  while (im.t < t_end - eps) {
+    const double dt = std::min(im.opt.dt, t_end - im.t), t1 = im.t + dt;
+    std::vector<std::shared_ptr<const DynamicSolver3D::Saved>> saved;
+    for (const auto& l : im.lines) saved.push_back(l->save());
+
+    // Newmark: the new velocity and acceleration of every point from its new position.
+    auto kinematics = [&](const Eigen::VectorXd& X1, Eigen::VectorXd& V1, Eigen::VectorXd& A1) {
+      A1 = (X1 - im.X - dt * im.V - dt * dt * (0.5 - kBeta) * im.A) / (kBeta * dt * dt);
+      V1 = im.V + dt * ((1.0 - kGamma) * im.A + kGamma * A1);
+    };
+    // The motion of point p over the step: position and velocity linear in time from (X, V) at
+    // t to (X1, V1) at t1 (a fixed point stays where it is).
+    auto pointMotion = [&](std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      const double t0 = im.t;
+      const Eigen::Vector3d x0 = im.X.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                            v0 = im.V.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                            x1 = X1.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                            v1 = V1.segment<3>(static_cast<Eigen::Index>(3 * p));
+      return [=](double tau) {
+        const double w = dt > 0.0 ? std::clamp((tau - t0) / dt, 0.0, 1.0) : 1.0;
+        const Eigen::Vector3d x = x0 + w * (x1 - x0), v = v0 + w * (v1 - v0);
+        TopState s;
+        s.x = x[0];
+        s.y = x[1];
+        s.z = x[2];
+        s.vx = v[0];
+        s.vy = v[1];
+        s.vz = v[2];
+        return s;
+      };
+    };
+    // Run every line with an end at one of `pts` through the step with the points at X1; false
+    // when a line's step fails.
+    std::string why;
+    auto runLines = [&](const std::vector<std::size_t>& pts, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      std::vector<char> done(im.lines.size(), 0);
+      for (std::size_t p : pts)
+        for (std::size_t i : im.lines_at[p]) {
+          if (done[i]) continue;
+          done[i] = 1;
+          DynamicSolver3D& line = *im.lines[i];
+          const SystemLine& sl = im.system.lines[i];
+          line.restore(*saved[i]);
+          line.setTopInput(pointMotion(sl.to, X1, V1));
+          if (sl.from != SystemLine::kFreeEnd && im.system.points[sl.from].free())
+            line.setLowerEndInput(pointMotion(sl.from, X1, V1));
+          ++im.line_steps;
+          const StepReport rep = line.advanceTo(t1);
+          if (!rep.ok) {
+            why = "line " + sl.name + ": " + rep.message;
+            return false;
+          }
+        }
+      return true;
+    };
+    // Force balance of every free point: M a - (pulls + own load).
+    double scale = 1.0;
+    auto residual = [&](const Eigen::VectorXd& X1, const Eigen::VectorXd& V1, const Eigen::VectorXd& A1,
+                        Eigen::VectorXd& G) {
+      G.resize(m);
+      for (std::size_t k = 0; k < im.free_pts.size(); ++k) {
+        const std::size_t p = im.free_pts[k];
+        double F[3];
+        im.load(p, X1.data() + 3 * p, V1.data() + 3 * p, t1, F);
+        scale = std::max({scale, std::abs(F[2])});
+        for (std::size_t i : im.lines_at[p]) {
+          // A line pulls its upper point with -top_force and its lower point with anchor_force.
+          const StaticResult s = im.lines[i]->snapshot();
+          const bool top = im.system.lines[i].to == p;
+          const double f[3] = {top ? -s.top_force_x : s.anchor_force_x, top ? -s.top_force_y : s.anchor_force_y,
+                               top ? -s.top_force_z : s.anchor_force_z};
+          for (int c = 0; c < 3; ++c) {
+            F[c] += f[c];
+            scale = std::max(scale, std::abs(f[c]));
+          }
+        }
+        for (int c = 0; c < 3; ++c)
+          G[static_cast<Eigen::Index>(3 * k + c)] = im.mass(p) * A1[static_cast<Eigen::Index>(3 * p + c)] - F[c];
+      }
+    };
+    auto fail = [&](const std::string& what) {
+      for (std::size_t i = 0; i < im.lines.size(); ++i) im.lines[i]->restore(*saved[i]);
+      if (message) *message = "t = " + std::to_string(t1) + " s: " + what;
+      return false;
+    };
+
+    // Predictor: constant acceleration.
+    Eigen::VectorXd X1 = im.X + dt * im.V + 0.5 * dt * dt * im.A, V1, A1, G;
+    kinematics(X1, V1, A1);
+    if (!runLines(im.free_pts, X1, V1)) return fail(why);
+    residual(X1, V1, A1, G);
+    bool converged = m == 0;
+    double g_prev = 0.0;
+    for (int it = 0; it < kMaxPointIterations && !converged; ++it) {
+      const double g = G.cwiseAbs().maxCoeff();
+      if (g < kForceTolerance * scale) {
+        converged = true;
+        break;
+      }
+      // Point Jacobian by finite differences, kept across steps while the iteration contracts.
+      if (im.J.rows() != m || (it > 0 && g > 0.25 * g_prev)) {
+        im.J.resize(m, m);
+        for (std::size_t k = 0; k < im.free_pts.size(); ++k) {
+          const std::size_t p = im.free_pts[k];
+          for (int c = 0; c < 3; ++c) {
+            Eigen::VectorXd Xp = X1, Vp, Ap, Gp;
+            Xp[static_cast<Eigen::Index>(3 * p + c)] += kFdStep;
+            kinematics(Xp, Vp, Ap);
+            if (!runLines({p}, Xp, Vp)) return fail(why);
+            residual(Xp, Vp, Ap, Gp);
+            // Only the lines at p changed: the other points' rows are unchanged but for M a.
+            im.J.col(static_cast<Eigen::Index>(3 * k + c)) = (Gp - G) / kFdStep;
+          }
+          if (!runLines({p}, X1, V1)) return fail(why);  // back to the current iterate
+        }
+      }
+      g_prev = g;
+      const Eigen::VectorXd dX = im.J.fullPivLu().solve(-G);
+      for (std::size_t k = 0; k < im.free_pts.size(); ++k)
+        X1.segment<3>(static_cast<Eigen::Index>(3 * im.free_pts[k])) += dX.segment<3>(static_cast<Eigen::Index>(3 * k));
+      kinematics(X1, V1, A1);
+      if (!runLines(im.free_pts, X1, V1)) return fail(why);
+      residual(X1, V1, A1, G);
+      ++im.iterations;
+    }
+    if (!converged && G.cwiseAbs().maxCoeff() >= kForceTolerance * scale)
+      return fail("the point iteration did not converge: force residual " + std::to_string(G.cwiseAbs().maxCoeff()) +
+                  " N");
+    im.X = X1;
+    im.V = V1;
+    im.A = A1;
+    im.t = t1;
+  }
+  im.t = std::max(im.t, t_end);
+  return true;
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics
