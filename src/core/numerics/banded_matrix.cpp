@@ -86,7 +86,8 @@ using block_lu::blockBackward;
 using block_lu::blockFactor;
 using block_lu::blockForward;
 using block_lu::BlockStorage;
-using block_lu::columnKernel;
+using block_lu::blockKernel;
+using block_lu::Kernel;
 using block_lu::leftoverRows;
 using block_lu::Panels;
 
@@ -99,20 +100,20 @@ namespace {
 // the meeting node.
 
 template <int NB, int LEAD>
-int twistedFactor(bool columns, int nodes, int meet, const BlockStorage& lower, const BlockStorage& mirror,
+int twistedFactor(Kernel kernel, int nodes, int meet, const BlockStorage& lower, const BlockStorage& mirror,
                   ForkJoin* fork) {
   constexpr int LM = NB - LEAD, W = 2 * NB;
   const int mirror_nodes = nodes - meet;
   int lower_info = 0, upper_info = 0;
-  auto lowerSweep = [&] { lower_info = blockFactor<NB, LEAD>(columns, NB * (meet + 1), lower, Panels::kInner); };
+  auto lowerSweep = [&] { lower_info = blockFactor<NB, LEAD>(kernel, NB * (meet + 1), lower, Panels::kInner); };
   auto upperSweep = [&] {
-    const int k = block_lu::mirrorFactor<NB, LM>(columns, nodes, meet, lower.rows, mirror);
+    const int k = block_lu::mirrorFactor<NB, LM>(kernel, nodes, meet, lower.rows, mirror);
     if (k != 0) {  // mirror node (k - 1) / NB is node nodes - 1 - (k - 1) / NB
       upper_info = NB * (nodes - 1 - (k - 1) / NB) + (k - 1) % NB + 1;
       return;
     }
     double left[LM * NB];
-    leftoverRows<NB, LM>(columns, NB * mirror_nodes, mirror, left);
+    leftoverRows<NB, LM>(kernel, NB * mirror_nodes, mirror, left);
     double* const own = lower.rows + static_cast<std::size_t>(LEAD + NB * meet) * W;
     for (int r = 0; r < LM; ++r)
       for (int c = 0; c < NB; ++c) own[r * W + c] = left[r * NB + c];
@@ -120,31 +121,31 @@ int twistedFactor(bool columns, int nodes, int meet, const BlockStorage& lower, 
   runBoth(fork, lowerSweep, upperSweep);
   if (lower_info != 0) return lower_info;
   if (upper_info != 0) return upper_info;
-  return blockFactor<NB, LEAD>(columns, NB * (meet + 1), lower, Panels::kLast);
+  return blockFactor<NB, LEAD>(kernel, NB * (meet + 1), lower, Panels::kLast);
 }
 
 template <int NB, int LEAD>
-void twistedSolve(bool columns, int nodes, int meet, const BlockStorage& lower, const BlockStorage& mirror,
+void twistedSolve(Kernel kernel, int nodes, int meet, const BlockStorage& lower, const BlockStorage& mirror,
                   double* b, double* mb, ForkJoin* fork) {
   constexpr int LM = NB - LEAD;
   const int mirror_nodes = nodes - meet;
   double carry_lower[LEAD], carry_upper[LM];
-  auto lowerForward = [&] { blockForward<NB, LEAD>(columns, NB * (meet + 1), lower, b, Panels::kInner, carry_lower); };
+  auto lowerForward = [&] { blockForward<NB, LEAD>(kernel, NB * (meet + 1), lower, b, Panels::kInner, carry_lower); };
   auto upperForward = [&] {
     for (int q = 0; q < LM; ++q) mb[q] = b[LEAD + NB * (nodes - 1) + q];
     for (int i = 0; i + 1 < mirror_nodes; ++i)
       for (int r = 0; r < NB; ++r) mb[LM + NB * i + r] = b[LEAD + NB * (nodes - 2 - i) + r];
-    blockForward<NB, LM>(columns, NB * mirror_nodes, mirror, mb, Panels::kInner, carry_upper);
+    blockForward<NB, LM>(kernel, NB * mirror_nodes, mirror, mb, Panels::kInner, carry_upper);
   };
   runBoth(fork, lowerForward, upperForward);
   // The meeting node: its own rows' right-hand side from the mirror, then its x.
   for (int q = 0; q < LM; ++q) b[LEAD + NB * meet + q] = carry_upper[q];
-  blockForward<NB, LEAD>(columns, NB * (meet + 1), lower, b, Panels::kLast, carry_lower);
-  blockBackward<NB, LEAD>(columns, meet, meet, lower, b, nullptr);
+  blockForward<NB, LEAD>(kernel, NB * (meet + 1), lower, b, Panels::kLast, carry_lower);
+  blockBackward<NB, LEAD>(kernel, meet, meet, lower, b, nullptr);
   const double* const x_meet = b + NB * meet;
-  auto lowerBack = [&] { blockBackward<NB, LEAD>(columns, meet - 1, 0, lower, b, x_meet); };
+  auto lowerBack = [&] { blockBackward<NB, LEAD>(kernel, meet - 1, 0, lower, b, x_meet); };
   auto upperBack = [&] {
-    blockBackward<NB, LM>(columns, mirror_nodes - 2, 0, mirror, mb, x_meet);
+    blockBackward<NB, LM>(kernel, mirror_nodes - 2, 0, mirror, mb, x_meet);
     for (int i = 0; i + 1 < mirror_nodes; ++i)
       for (int k = 0; k < NB; ++k) b[NB * (nodes - 1 - i) + k] = mb[NB * i + k];
   };
@@ -162,20 +163,20 @@ BlockStorage storageOf(const V& rows, const V& carried, const V& panels, const s
 }
 
 template <int NB, int LEAD>
-int factorBlocks(bool columns, int n, int meet, const BlockStorage& s, const BlockStorage& mirror, ForkJoin* fork) {
-  if (meet == 0) return blockFactor<NB, LEAD>(columns, n, s);
-  return twistedFactor<NB, LEAD>(columns, n / NB, meet, s, mirror, fork);
+int factorBlocks(Kernel kernel, int n, int meet, const BlockStorage& s, const BlockStorage& mirror, ForkJoin* fork) {
+  if (meet == 0) return blockFactor<NB, LEAD>(kernel, n, s);
+  return twistedFactor<NB, LEAD>(kernel, n / NB, meet, s, mirror, fork);
 }
 
 template <int NB, int LEAD>
-void solveBlocks(bool columns, int n, int meet, const BlockStorage& s, const BlockStorage& mirror, double* b,
+void solveBlocks(Kernel kernel, int n, int meet, const BlockStorage& s, const BlockStorage& mirror, double* b,
                  double* mb, ForkJoin* fork) {
   if (meet == 0) {
-    blockForward<NB, LEAD>(columns, n, s, b, Panels::kAll, nullptr);
-    blockBackward<NB, LEAD>(columns, n / NB - 1, 0, s, b, nullptr);
+    blockForward<NB, LEAD>(kernel, n, s, b, Panels::kAll, nullptr);
+    blockBackward<NB, LEAD>(kernel, n / NB - 1, 0, s, b, nullptr);
     return;
   }
-  twistedSolve<NB, LEAD>(columns, n / NB, meet, s, mirror, b, mb, fork);
+  twistedSolve<NB, LEAD>(kernel, n / NB, meet, s, mirror, b, mb, fork);
 }
 
 }  // namespace
@@ -195,16 +196,18 @@ void BandedMatrix::setBlockStructure(int block, int lead) {
                                 ", kl = " + std::to_string(kl_) + ", ku = " + std::to_string(ku_));
   block_ = block;
   lead_ = lead;
-  // The kernel's storage (see rowkernel::factor, columnkernel::ColumnLU): the row kernel
-  // eliminates in place in rows_ and the carried rows of every panel (lead per node), the column
-  // kernel in panels of 2 block columns of the panel rows (rounded up to 8) per node. Both: per
-  // node the permutation (M = lead + block) and U's reciprocal diagonal.
-  columns_ = columnKernel();
+  // The kernel's storage (see rowkernel::factor, columnkernel::ColumnLU, eigenkernel::EigenLU):
+  // the row kernel eliminates in place in rows_ and the carried rows of every panel (lead per
+  // node), the column kernel in panels of 2 block columns of the panel rows (rounded up to 8) per
+  // node, the Eigen kernel in panels of the M = lead + block panel rows of 2 block columns. All:
+  // per node the permutation (M) and U's reciprocal diagonal.
+  kernel_ = static_cast<int>(blockKernel(block));
+  const bool in_place = kernel_ == static_cast<int>(Kernel::kRows);
   const std::size_t nodes = static_cast<std::size_t>(n_ / block), M = static_cast<std::size_t>(lead + block),
                     W = static_cast<std::size_t>(2 * block), lanes = (M + 7) / 8 * 8;
   rows_.assign(static_cast<std::size_t>(n_) * W, 0.0);
-  carried_.assign(columns_ ? 0 : nodes * static_cast<std::size_t>(lead) * W, 0.0);
-  panels_.assign(columns_ ? nodes * W * lanes : 0, 0.0);
+  carried_.assign(in_place ? nodes * static_cast<std::size_t>(lead) * W : 0, 0.0);
+  panels_.assign(in_place ? 0 : nodes * W * (kernel_ == static_cast<int>(Kernel::kColumns) ? lanes : M), 0.0);
   inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
   perm_.assign(nodes * M, 0);
   // The mirror of the two-ended elimination: nodes meet_ .. last, with lead block - lead.
@@ -212,9 +215,9 @@ void BandedMatrix::setBlockStructure(int block, int lead) {
   const std::size_t mnodes = meet_ > 0 ? nodes - static_cast<std::size_t>(meet_) : 0,
                     mlead = static_cast<std::size_t>(block - lead), mM = mlead + static_cast<std::size_t>(block),
                     mlanes = (mM + 7) / 8 * 8;
-  mirror_rows_.assign(columns_ ? 0 : mnodes * static_cast<std::size_t>(block) * W, 0.0);
-  mirror_carried_.assign(columns_ ? 0 : mnodes * mlead * W, 0.0);
-  mirror_panels_.assign(columns_ ? mnodes * W * mlanes : 0, 0.0);
+  mirror_rows_.assign(in_place ? mnodes * static_cast<std::size_t>(block) * W : 0, 0.0);
+  mirror_carried_.assign(in_place ? mnodes * mlead * W : 0, 0.0);
+  mirror_panels_.assign(in_place ? 0 : mnodes * W * (kernel_ == static_cast<int>(Kernel::kColumns) ? mlanes : mM), 0.0);
   mirror_inv_diag_.assign(mnodes * static_cast<std::size_t>(block), 0.0);
   mirror_perm_.assign(mnodes * mM, 0);
   mirror_b_.assign(mnodes * static_cast<std::size_t>(block), 0.0);
@@ -270,11 +273,11 @@ int BandedMatrix::factorize() {
   const BlockStorage st = storageOf(rows_, carried_, panels_, inv_diag_, perm_);
   const BlockStorage mirror = storageOf(mirror_rows_, mirror_carried_, mirror_panels_, mirror_inv_diag_, mirror_perm_);
   if (block_ == 8 && lead_ == 5)  // 2-D
-    info = factorBlocks<8, 5>(columns_, n_, meet_, st, mirror, fork_);
+    info = factorBlocks<8, 5>(static_cast<Kernel>(kernel_), n_, meet_, st, mirror, fork_);
   else if (block_ == 16 && lead_ == 10)  // 3-D, anchored
-    info = factorBlocks<16, 10>(columns_, n_, meet_, st, mirror, fork_);
+    info = factorBlocks<16, 10>(static_cast<Kernel>(kernel_), n_, meet_, st, mirror, fork_);
   else if (block_ == 16 && lead_ == 7)  // 3-D, free lower end
-    info = factorBlocks<16, 7>(columns_, n_, meet_, st, mirror, fork_);
+    info = factorBlocks<16, 7>(static_cast<Kernel>(kernel_), n_, meet_, st, mirror, fork_);
   else if (kl_ == 12 && ku_ == 10)
     info = bandFactor<12, 10>(n_, ab_.data(), ipiv_.data());
   else if (kl_ == 8 && ku_ == 8)
@@ -296,11 +299,11 @@ void BandedMatrix::solve(Eigen::VectorXd& b) const {
     const BlockStorage st = storageOf(rows_, carried_, panels_, inv_diag_, perm_);
     const BlockStorage mirror = storageOf(mirror_rows_, mirror_carried_, mirror_panels_, mirror_inv_diag_, mirror_perm_);
     if (block_ == 8 && lead_ == 5)
-      solveBlocks<8, 5>(columns_, n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
+      solveBlocks<8, 5>(static_cast<Kernel>(kernel_), n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
     else if (block_ == 16 && lead_ == 10)
-      solveBlocks<16, 10>(columns_, n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
+      solveBlocks<16, 10>(static_cast<Kernel>(kernel_), n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
     else
-      solveBlocks<16, 7>(columns_, n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
+      solveBlocks<16, 7>(static_cast<Kernel>(kernel_), n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
     return;
   }
   const int kv = kl_ + ku_;

@@ -7,13 +7,17 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <type_traits>
 #include <utility>
 
 // The block elimination has an AVX-512 kernel on x86-64 with GCC or Clang (see ColumnLU), chosen
-// at run time when the processor has AVX-512F.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(MD_NO_MULTIVERSION)
+// at run time when the processor has AVX-512F; elsewhere it runs the Eigen kernel (EigenLU). The
+// build option MD_BLOCK_KERNEL (CMakeLists.txt) can choose the Eigen kernel or the portable row
+// kernel (rowkernel) everywhere instead, and MD_NO_MULTIVERSION leaves the AVX-512 kernel out.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(MD_NO_MULTIVERSION) && \
+    !defined(MD_BLOCK_KERNEL_EIGEN) && !defined(MD_BLOCK_KERNEL_PORTABLE)
 #define MD_AVX512_KERNEL 1
 #include <immintrin.h>
 #else
@@ -331,6 +335,7 @@ MD_SIMD_CLONES int factor(int n, double* rows, double* carried, double* inv_diag
 }  // namespace mooring_dynamics
 
 #include "block_lu_avx512.hpp"
+#include "block_lu_eigen.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -462,6 +467,19 @@ struct ColumnLayout {
   static constexpr int carriedSlot(int r) { return NB + r; }
 };
 
+/// The Eigen kernel's factor: a contiguous row-major panel per node, rows in position order
+/// (see eigenkernel::EigenLU), the right-hand side by panel row as in the row kernel.
+template <int NB, int LEAD>
+struct PanelLayout {
+  static constexpr int stride = 1;
+  const double* panels;
+  MD_INLINE const double* row(int j, const int*, int i) const {
+    return panels + static_cast<std::size_t>((LEAD + NB) * j + i) * 2 * NB;
+  }
+  static constexpr int intervalSlot(int q) { return LEAD + q; }
+  static constexpr int carriedSlot(int r) { return r; }
+};
+
 template <int NB, int LEAD>
 MD_SIMD_CLONES void rowForward(int n, const double* rows, const double* carried, const int* perm, double* b,
                                Panels part, double* carry) {
@@ -483,13 +501,42 @@ MD_SIMD_CLONES void columnBackward(int from, int to, const double* panels, const
   blockBackward<NB, LEAD>(from, to, ColumnLayout<NB, LEAD>{panels}, perm, inv_diag, b, x_above);
 }
 
-/// Whether this processor runs the AVX-512 block kernel (a test of the processor model that the
-/// runtime library fills in at start-up).
-bool columnKernel() {
-#if MD_AVX512_KERNEL
-  return __builtin_cpu_supports("avx512f");
+template <int NB, int LEAD>
+MD_SIMD_CLONES void panelForward(int n, const double* panels, const int* perm, double* b, Panels part,
+                                 double* carry) {
+  blockForward<NB, LEAD>(n, PanelLayout<NB, LEAD>{panels}, perm, b, part, carry);
+}
+template <int NB, int LEAD>
+MD_SIMD_CLONES void panelBackward(int from, int to, const double* panels, const int* perm, const double* inv_diag,
+                                  double* b, const double* x_above) {
+  blockBackward<NB, LEAD>(from, to, PanelLayout<NB, LEAD>{panels}, perm, inv_diag, b, x_above);
+}
+
+/// The block elimination's kernels: the portable row kernel (in place, rowkernel), the AVX-512
+/// column kernel (columnkernel) and the Eigen kernel (eigenkernel). All give the same bits.
+enum class Kernel { kRows, kColumns, kEigen };
+
+/// The block size (unknowns per node) the AVX-512 kernel is used for: 8 (2-D). With 16 (3-D)
+/// the Eigen kernel was faster (see block_lu_avx512.hpp's header).
+constexpr int kColumnKernelBlock = 8;
+
+/// The kernel of this build and processor for blocks of `block` unknowns: AVX-512 when it is compiled in and the processor has
+/// AVX-512F (a test of the processor model that the runtime library fills in at start-up), else
+/// Eigen, or the one the build option MD_BLOCK_KERNEL chose. The environment variable
+/// MD_BLOCK_KERNEL=eigen or =portable chooses another at run time (tests and benchmarks of the
+/// kernels on one build); anything else in it is ignored.
+Kernel blockKernel(int block) {
+  if (const char* env = std::getenv("MD_BLOCK_KERNEL")) {
+    if (std::strcmp(env, "eigen") == 0) return Kernel::kEigen;
+    if (std::strcmp(env, "portable") == 0) return Kernel::kRows;
+  }
+#if defined(MD_BLOCK_KERNEL_PORTABLE)
+  return Kernel::kRows;
+#elif MD_AVX512_KERNEL
+  return block == kColumnKernelBlock && __builtin_cpu_supports("avx512f") ? Kernel::kColumns : Kernel::kEigen;
 #else
-  return false;
+  (void)block;
+  return Kernel::kEigen;
 #endif
 }
 
@@ -504,40 +551,51 @@ struct BlockStorage {
 
 /// The block LU with the structure's kernel, of the panels `part` names.
 template <int NB, int LEAD>
-int blockFactor(bool columns, int n, const BlockStorage& s, Panels part = Panels::kAll) {
+int blockFactor(Kernel kernel, int n, const BlockStorage& s, Panels part = Panels::kAll) {
 #if MD_AVX512_KERNEL
-  if (columns) return columnkernel::factor<NB, LEAD>(n, rowsInOrder<NB, LEAD>(n, s.rows), s.panels, s.inv_diag, s.perm, part);
+  if constexpr (NB == kColumnKernelBlock)
+    if (kernel == Kernel::kColumns)
+      return columnkernel::factor<NB, LEAD>(n, rowsInOrder<NB, LEAD>(n, s.rows), s.panels, s.inv_diag, s.perm, part);
 #endif
-  (void)columns;
+  if (kernel == Kernel::kEigen)
+    return eigenkernel::factor<NB, LEAD>(n, rowsInOrder<NB, LEAD>(n, s.rows), s.panels, s.inv_diag, s.perm, part);
   return rowkernel::factor<NB, LEAD>(n, s.rows, s.carried, s.inv_diag, s.perm, part);
 }
 template <int NB, int LEAD>
-void blockForward(bool columns, int n, const BlockStorage& s, double* b, Panels part, double* carry) {
-  if (columns) columnForward<NB, LEAD>(n, s.panels, s.perm, b, part, carry);
+void blockForward(Kernel kernel, int n, const BlockStorage& s, double* b, Panels part, double* carry) {
+  if constexpr (NB == kColumnKernelBlock)
+    if (kernel == Kernel::kColumns) return columnForward<NB, LEAD>(n, s.panels, s.perm, b, part, carry);
+  if (kernel == Kernel::kEigen) panelForward<NB, LEAD>(n, s.panels, s.perm, b, part, carry);
   else rowForward<NB, LEAD>(n, s.rows, s.carried, s.perm, b, part, carry);
 }
 template <int NB, int LEAD>
-void blockBackward(bool columns, int from, int to, const BlockStorage& s, double* b, const double* x_above) {
-  if (columns) columnBackward<NB, LEAD>(from, to, s.panels, s.perm, s.inv_diag, b, x_above);
+void blockBackward(Kernel kernel, int from, int to, const BlockStorage& s, double* b, const double* x_above) {
+  if constexpr (NB == kColumnKernelBlock)
+    if (kernel == Kernel::kColumns) return columnBackward<NB, LEAD>(from, to, s.panels, s.perm, s.inv_diag, b, x_above);
+  if (kernel == Kernel::kEigen) panelBackward<NB, LEAD>(from, to, s.panels, s.perm, s.inv_diag, b, x_above);
   else rowBackward<NB, LEAD>(from, to, s.rows, s.carried, s.perm, s.inv_diag, b, x_above);
 }
 /// The inner panels of the mirror of nodes meet .. nodes - 1 of a block structure with lead
 /// NB - MLEAD (whose rows are `rows`): its node i is node nodes - 1 - i, its lead rows the last
 /// node's own rows, its interval i interval nodes - 2 - i with the two nodes' columns swapped;
-/// its last node, the meeting node, is left (Panels::kInner). The column kernel reads the rows
-/// where they are; the row kernel, which works in place, copies them into mirror.rows.
+/// its last node, the meeting node, is left (Panels::kInner). The column and Eigen kernels read
+/// the rows where they are; the row kernel, which works in place, copies them into mirror.rows.
 template <int NB, int MLEAD>
-int mirrorFactor(bool columns, int nodes, int meet, const double* rows, const BlockStorage& mirror) {
+int mirrorFactor(Kernel kernel, int nodes, int meet, const double* rows, const BlockStorage& mirror) {
   constexpr int LEAD = NB - MLEAD, W = 2 * NB;
   const int mirror_n = NB * (nodes - meet);
   const double* const own = rows + static_cast<std::size_t>(LEAD + NB * (nodes - 1)) * W;
   const double* const last_interval = rows + static_cast<std::size_t>(LEAD + NB * (nodes - 2)) * W;
+  const RowSource source{own, last_interval, -NB * W, true, nullptr};
 #if MD_AVX512_KERNEL
-  if (columns)
-    return columnkernel::factor<NB, MLEAD>(mirror_n, RowSource{own, last_interval, -NB * W, true, nullptr},
-                                           mirror.panels, mirror.inv_diag, mirror.perm, Panels::kInner);
+  if constexpr (NB == kColumnKernelBlock)
+    if (kernel == Kernel::kColumns)
+      return columnkernel::factor<NB, MLEAD>(mirror_n, source, mirror.panels, mirror.inv_diag, mirror.perm,
+                                           Panels::kInner);
 #endif
-  (void)columns;
+  if (kernel == Kernel::kEigen)
+    return eigenkernel::factor<NB, MLEAD>(mirror_n, source, mirror.panels, mirror.inv_diag, mirror.perm,
+                                          Panels::kInner);
   double* const out = mirror.rows;
   for (int q = 0; q < MLEAD; ++q)
     for (int c = 0; c < W; ++c) out[q * W + c] = c < NB ? own[q * W + c] : 0.0;
@@ -558,15 +616,16 @@ int mirrorFactor(bool columns, int nodes, int meet, const double* rows, const Bl
 /// NB columns, row-major into out (in carried order: the order the forward part carries their
 /// right-hand sides in).
 template <int NB, int LEAD>
-void leftoverRows(bool columns, int n, const BlockStorage& s, double* out) {
+void leftoverRows(Kernel kernel, int n, const BlockStorage& s, double* out) {
   const int j = n / NB - 1;
-  if (columns) {
+  if (kernel == Kernel::kColumns) {
     constexpr int lanes = (LEAD + NB + 7) / 8 * 8;
     const double* const P = s.panels + static_cast<std::size_t>(j) * 2 * NB * lanes;
     for (int r = 0; r < LEAD; ++r)
       for (int c = 0; c < NB; ++c) out[r * NB + c] = P[static_cast<std::size_t>(c) * lanes + NB + r];
   } else {
-    const double* const C = s.carried + static_cast<std::size_t>(LEAD * j) * 2 * NB;
+    const double* const C = kernel == Kernel::kEigen ? s.panels + static_cast<std::size_t>((LEAD + NB) * j) * 2 * NB
+                                                     : s.carried + static_cast<std::size_t>(LEAD * j) * 2 * NB;
     for (int r = 0; r < LEAD; ++r)
       for (int c = 0; c < NB; ++c) out[r * NB + c] = C[r * 2 * NB + c];
   }

@@ -1,5 +1,23 @@
 // The AVX-512 column kernel of the block LU: a part of block_lu.hpp (its helpers, macros and
 // floating-point settings), included by it only.
+//
+// Kept for 8 unknowns per node (2-D) only, against the Eigen kernel (block_lu_eigen.hpp: Eigen
+// fixed-size blocks, same bits): the rule is to keep the intrinsics only where a whole run is
+// more than 15 % faster with them. Whole runs of `cable_sim dynamic CONFIG --threads 1
+// --no-progress`, the two kernels alternately on one build (MD_BLOCK_KERNEL=eigen in the
+// environment, AVX-512 first in each pair), medians of three, on a shared 2-core AMD EPYC with
+// AVX-512 at a load of 4 to 9 (two-thread runs were not measurable there: the threads wait):
+//   A.3 chain_mooring             0.94 s  (Eigen 1.95 s: 2.08 times as long)   kept
+//   A.2 s_tether                  1.01 s  (Eigen 1.10 s: 1.09)                 kept with A.3
+//   A.2 s_tether --dt 0.1         2.63 s  (Eigen 2.72 s: 1.04)
+//   A.1 towed_array (16 per node) 3.11 s  (Eigen 2.54 s: 0.82)                 not used
+// A.1 again with the pair's order reversed (Eigen first; AVX-512 from the build before this
+// change): AVX-512 3.51 s, Eigen 3.83 s (1.09). The order within a pair moves A.1 by about 20 %
+// either way, so with 16 unknowns per node the kernel gains at most about 10 %: below the rule's
+// 15 %, so block_lu.hpp uses it for blocks of 8 only (kColumnKernelBlock). A.3 is twice as fast
+// with it, well beyond that noise. bench_banded (medians of three): BM_BlockFactor8/170 28 us
+// (Eigen 91 us, row kernel 72 us), BM_BlockFactor16/170 252 us (Eigen 445 us, row kernel
+// 349 us); the solves are shared. Without AVX-512 (ARM, older x86) the Eigen kernel runs.
 #pragma once
 
 namespace mooring_dynamics {

@@ -140,10 +140,10 @@ class BandedMatrix {
   [[noreturn]] void throwOutsidePattern(int i, int j) const;
   /// Block structure: the matrix, 2 * block entries per row (the factor after factorize()).
   std::vector<double, CacheLineAllocator<double>> rows_;
-  bool columns_ = false;  ///< block structure: the AVX-512 column kernel (see banded_matrix.cpp)
+  int kernel_ = 0;  ///< block structure: its kernel (block_lu::Kernel, see banded_matrix.cpp)
   /// Block elimination, row kernel: the carried rows of every panel (lead per node).
   std::vector<double, CacheLineAllocator<double>> carried_;
-  /// Block elimination, column kernel: the factored panels, column-major.
+  /// Block elimination, column and Eigen kernels: the factored panels.
   std::vector<double, CacheLineAllocator<double>> panels_;
   std::vector<double> inv_diag_; ///< reciprocals of U's diagonal (block elimination)
   std::vector<int> perm_;        ///< block elimination: panel row at each position
