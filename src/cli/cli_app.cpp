@@ -269,6 +269,35 @@ const std::vector<Command>& commands() {
            {"help", 'h', nullptr, "show this help"},
        },
        &runPlot},
+      {"stiffness", "VESSEL.yaml [--out DIR] [--translation-step M] [--rotation-step-deg D]",
+       "6 x 6 mooring stiffness of a moored vessel",
+       "Solve the statics of the vessel's lines at the file's pose (vessel.pose) and at a small offset either\n"
+       "way along and about each body axis (surge, sway, heave, roll, pitch, yaw), and print the mooring\n"
+       "stiffness K = -d(wrench)/d(offset) in body axes about the body origin, with the wrench at the pose.\n"
+       "With --out, write DIR/stiffness.csv (rows: force/moment, columns: offset). See\n"
+       "docs/problem_format.md, \"Moored vessel\".",
+       {
+           {"out", 0, "DIR", "write DIR/stiffness.csv (DIR is created)"},
+           {"translation-step", 0, "M", "central-difference step of the translations [m] (default 0.1)"},
+           {"rotation-step-deg", 0, "D", "central-difference step of the rotations [deg] (default 0.1)"},
+           {"help", 'h', nullptr, "show this help"},
+       },
+       &runStiffness},
+      {"offset", "VESSEL.yaml [--dof NAME] [--range R] [--steps N] [--out DIR]",
+       "offset curve of a moored vessel: restoring force and largest tension",
+       "Solve the statics of the vessel's lines with the vessel moved from the file's pose along (surge,\n"
+       "sway, heave; R in m, default 20) or about (roll, pitch, yaw; R in deg, default 10) one body axis,\n"
+       "at N offsets from -R to R (default 11), and print the restoring force or moment in that axis and\n"
+       "the largest line tension with its line. With --out, write DIR/offset.csv (offset, the six wrench\n"
+       "components in body axes, largest tension, its line) and DIR/offset.png (gnuplot).",
+       {
+           {"dof", 0, "NAME", "surge, sway, heave, roll, pitch or yaw (default surge)"},
+           {"range", 0, "R", "largest offset either way [m or deg]"},
+           {"steps", 0, "N", "number of offsets, >= 2 (default 11)"},
+           {"out", 0, "DIR", "write DIR/offset.csv and DIR/offset.png (DIR is created)"},
+           {"help", 'h', nullptr, "show this help"},
+       },
+       &runOffset},
   };
   return list;
 }

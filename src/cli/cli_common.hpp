@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "mooring_dynamics/core/model/dynamics_options.hpp"
+#include "mooring_dynamics/core/model/system.hpp"
 
 #include "cli_app.hpp"
 
@@ -65,6 +66,16 @@ std::string fmtNum(const char* f, double v);
 std::string csvNum(double v);
 
 // ---------------------------------------------------------------------------------------------
+// gnuplot (gnuplot.cpp)
+
+/// A single-quoted shell word.
+std::string shellQuote(const std::string& s);
+/// A double-quoted gnuplot string (backslash escapes are processed in double quotes).
+std::string gpString(const std::string& s);
+/// gnuplot is on PATH.
+bool gnuplotAvailable();
+
+// ---------------------------------------------------------------------------------------------
 // Output files
 
 /// Write `what` to `path` with `writer`; false (and a message on err) on any I/O failure.
@@ -92,9 +103,15 @@ bool writeFile(const fs::path& path, Writer writer, std::ostream& err) {
 int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err);      // cmd_static.cpp
 int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err);  // cmd_dynamic.cpp
 int runPlot(const ParsedArgs& args, std::ostream& out, std::ostream& err);        // cmd_plot.cpp
+int runStiffness(const ParsedArgs& args, std::ostream& out, std::ostream& err);   // cmd_vessel.cpp
+int runOffset(const ParsedArgs& args, std::ostream& out, std::ostream& err);      // cmd_vessel.cpp
 /// `static` on a system file (points and lines), cmd_system.cpp.
 int runSystemStatic(const std::string& path, bool want_table, std::size_t stride, double spacing_scale,
                     const std::string& out_dir, std::ostream& out, std::ostream& err);
+/// `dynamic` on a file with a vessel (cmd_vessel.cpp): the vessel follows vessel.motion_table
+/// (or holds still) through core::VesselLockstep, the lines on `threads` threads.
+int runVesselDynamic(const core::SystemProblem& s, int threads, const std::string& out_dir, std::ostream& out,
+                     std::ostream& err);
 /// `dynamic` on a system file, cmd_system.cpp: `overrides` applies the command-line options.
 int runSystemDynamic(const std::string& path, const std::function<void(core::DynamicOptions&)>& overrides,
                      const std::string& out_dir, std::ostream& out, std::ostream& err);

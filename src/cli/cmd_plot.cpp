@@ -19,12 +19,6 @@ namespace cli {
 namespace detail {
 namespace {
 
-std::string shellQuote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 /// A CSV file with a header: column names and rows of numbers.
 struct CsvTable {
   std::vector<std::string> header;
@@ -99,20 +93,6 @@ bool readCsv(const fs::path& path, const std::vector<std::string>& required, Csv
   return true;
 }
 
-/// A double-quoted gnuplot string (backslash escapes are processed in double quotes).
-std::string gpString(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    if (c == '\n') {
-      o += "\\n";
-      continue;
-    }
-    o += c;
-  }
-  return o + "\"";
-}
-
 /// Value of `"key": ...` in our own dynamic_summary.json (flat, as cmd_dynamic.cpp writes it); empty
 /// if absent.
 std::string jsonField(const std::string& json, const std::string& key) {
@@ -148,8 +128,6 @@ std::string rampColour(double f) {
                 static_cast<int>(std::lround(stops[i][2] + w * (stops[i + 1][2] - stops[i][2]))));
   return buf;
 }
-
-bool gnuplotAvailable() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 constexpr std::size_t kMaxShapes = 8;  ///< snapshot times drawn in shapes.png
 

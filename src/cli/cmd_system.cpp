@@ -14,6 +14,7 @@
 #include "mooring_dynamics/core/io/result_io.hpp"
 #include "mooring_dynamics/core/solvers/system_statics.hpp"
 #include "mooring_dynamics/core/solvers/system_dynamics.hpp"
+#include "mooring_dynamics/core/solvers/vessel_statics.hpp"
 
 namespace mooring_dynamics {
 namespace cli {
@@ -27,6 +28,7 @@ const char* pointType(core::SystemPoint::Type t) {
     case core::SystemPoint::Type::Fixed: return "fixed";
     case core::SystemPoint::Type::Buoy: return "buoy";
     case core::SystemPoint::Type::Body: return "body";
+    case core::SystemPoint::Type::Vessel: return "vessel";
   }
   return "?";
 }
@@ -115,6 +117,17 @@ int runSystemStatic(const std::string& path, bool want_table, std::size_t stride
     if (s.points[p].type == core::SystemPoint::Type::Buoy) out << "   draft " << fmtNum("%.3f", pt.buoy_draft) << " m";
     out << "\n";
   }
+  if (s.vessel.present && s.hasVesselPoints()) {
+    const core::VesselWrench w = core::vesselWrench(s, s.vessel.pose, r.lines);
+    auto vec = [](const Eigen::Vector3d& v, const char* f) {
+      return "(" + fmtNum(f, v.x()) + ", " + fmtNum(f, v.y()) + ", " + fmtNum(f, v.z()) + ")";
+    };
+    out << "  vessel " << s.vessel.frame << " at (" << fmtNum("%.2f", s.vessel.pose.position.x()) << ", "
+        << fmtNum("%.2f", s.vessel.pose.position.y()) << ", " << fmtNum("%.2f", s.vessel.pose.position.z())
+        << ") m: the lines' total wrench about its origin\n"
+        << "    world frame  force " << vec(w.force_world, "%.1f") << " N, moment " << vec(w.moment_world, "%.1f") << " N m\n"
+        << "    body frame   force " << vec(w.force_body, "%.1f") << " N, moment " << vec(w.moment_body, "%.1f") << " N m\n";
+  }
   out << "  lines (tension [N]):\n";
   for (std::size_t i = 0; i < r.lines.size(); ++i) {
     const auto& l = r.lines[i];
@@ -155,6 +168,10 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   core::SystemProblem s;
   if (!loadSystem(path, s, err)) return kExitBadInput;
   overrides(s.dynamics);
+  // A system's lines each run on one thread; `threads` runs that many lines side by side.
+  const int threads = s.dynamics.threads;
+  s.dynamics.threads = 1;
+  if (s.vessel.present && s.hasVesselPoints()) return runVesselDynamic(s, threads, out_dir, out, err);
   if (!(s.dynamics.duration > 0.0)) {
     err << kProg << ": error: " << path << ": dynamics.duration: not given; add `dynamics: {duration: 60, dt: 0.5}`"
         << " to the system file or pass --duration S\n";
@@ -163,7 +180,7 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   const auto wall0 = std::chrono::steady_clock::now();
   std::unique_ptr<core::SystemDynamics> sim;
   try {
-    sim = std::make_unique<core::SystemDynamics>(s, s.dynamics);
+    sim = std::make_unique<core::SystemDynamics>(s, s.dynamics, threads);
   } catch (const std::invalid_argument& e) {
     err << kProg << ": error: " << path << ": " << e.what() << "\n";
     return kExitBadInput;

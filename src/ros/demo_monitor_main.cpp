@@ -1,6 +1,8 @@
 // demo_monitor: prints one live line for scripts/demo: time since the first state, top tension,
 // minimum tension, real-time factor and diagnostics level of a lockstep cable node.
 //   ~node      cable node name (default /mooring_dynamics_node)
+//   ~state_topic  CableState topic to follow (default <node>/cable_state; a vessel: one of its
+//              lines, <node>/lines/<line>/cable_state)
 //   ~duration  [s, wall] exit (status 0) after this long; 0 = until shutdown (default 0)
 //   ~interval  [s, wall] refresh period (default 0.5)
 // On a terminal the line is rewritten in place; otherwise one line per refresh. At exit: a summary
@@ -26,7 +28,8 @@ class Monitor {
     pnh.param("duration", duration_, 0.0);
     pnh.param("interval", interval_, 0.5);
     ros::NodeHandle nh;
-    s1_ = nh.subscribe(node_ + "/cable_state", 100, &Monitor::onState, this);
+    pnh.param<std::string>("state_topic", topic_, node_ + "/cable_state");
+    s1_ = nh.subscribe(topic_, 100, &Monitor::onState, this);
     s2_ = nh.subscribe("/diagnostics", 10, &Monitor::onDiag, this);
     tty_ = isatty(fileno(stdout));
     start_ = ros::WallTime::now();
@@ -35,7 +38,7 @@ class Monitor {
   int finish() {
     if (tty_) std::printf("\n");
     if (states_ == 0) {
-      std::printf("demo_monitor: no state from %s/cable_state\n", node_.c_str());
+      std::printf("demo_monitor: no state from %s\n", topic_.c_str());
       return 2;
     }
     std::printf("demo_monitor: %ld states over %.1f s simulated; top tension %.3f .. %.3f kN; real-time factor %s\n",
@@ -79,7 +82,7 @@ class Monitor {
     if (duration_ > 0.0 && (ros::WallTime::now() - start_).toSec() >= duration_) ros::shutdown();
   }
 
-  std::string node_;
+  std::string node_, topic_;
   double duration_ = 0.0, interval_ = 0.5;
   ros::Subscriber s1_, s2_;
   ros::WallTimer timer_;

@@ -5,6 +5,7 @@
 #include <exception>
 #include <stdexcept>
 
+#include "mooring_dynamics/core/solvers/dynamic_run.hpp"
 #include "mooring_dynamics/core/solvers/dynamics3d.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 
@@ -26,28 +27,12 @@ const char* toString(LockstepDriver::Outcome o) {
 // The adapters.
 
 core::TopInput linearTopInput(double tau, double t0, double x0, double z0, double t1, double x1, double z1) {
-  const double span = t1 - t0;
-  core::TopInput in;
-  const double w = std::clamp((tau - t0) / span, 0.0, 1.0);
-  in.x = x0 + w * (x1 - x0);
-  in.z = z0 + w * (z1 - z0);
-  in.vx = (x1 - x0) / span;
-  in.vz = (z1 - z0) / span;
-  return in;
+  return core::segmentTopInput(tau, t0, x0, z0, t1, x1, z1);
 }
 
 core::TopState linearTopState(double tau, double t0, double x0, double y0, double z0, double t1, double x1,
                               double y1, double z1) {
-  const double span = t1 - t0;
-  core::TopState in;
-  const double w = std::clamp((tau - t0) / span, 0.0, 1.0);
-  in.x = x0 + w * (x1 - x0);
-  in.y = y0 + w * (y1 - y0);
-  in.z = z0 + w * (z1 - z0);
-  in.vx = (x1 - x0) / span;
-  in.vy = (y1 - y0) / span;
-  in.vz = (z1 - z0) / span;
-  return in;
+  return core::segmentTopState(tau, t0, x0, y0, z0, t1, x1, y1, z1);
 }
 
 namespace {

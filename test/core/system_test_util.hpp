@@ -74,6 +74,29 @@ inline SystemProblem threeLegBuoy(double spacing) {
   return s;
 }
 
+/// Four 300 m chain legs from the corners of a 40 m x 20 m hull (fairleads 5 m below the
+/// waterline) to anchors 250 m out along the diagonals, in 100 m of water: symmetric about the
+/// body's x and y axes at the reference pose.
+inline SystemProblem fourLegVessel(double spacing = 5.0) {
+  SystemProblem s = threeLegBuoy(spacing);  // for its environment and chain
+  s.name = "four-leg vessel";
+  s.points.clear();
+  s.lines.clear();
+  s.vessel.present = true;
+  const double fx[4] = {20, -20, -20, 20}, fy[4] = {10, 10, -10, -10};
+  for (int k = 0; k < 4; ++k) {
+    const double d = std::hypot(fx[k], fy[k]);
+    const double ax = fx[k] + 250.0 * fx[k] / d, ay = fy[k] + 250.0 * fy[k] / d;
+    s.points.push_back(point("a" + std::to_string(k), SystemPoint::Type::Anchor, ax, ay, -100.0));
+    SystemPoint f = point("f" + std::to_string(k), SystemPoint::Type::Vessel, 0, 0, 0);
+    f.body_offset = Eigen::Vector3d(fx[k], fy[k], -5.0);
+    s.points.push_back(f);
+    s.lines.push_back(line("leg" + std::to_string(k), 2 * k, 2 * k + 1, 300.0, spacing));
+  }
+  s.placeVessel(RigidPose());
+  return s;
+}
+
 }  // namespace testing_util
 }  // namespace core
 }  // namespace mooring_dynamics

@@ -37,13 +37,76 @@ void readPosition(const Item& it, double& x, double& y, double& z) {
   z = m.number("z");
 }
 
+/// vessel.lines: each `{name, fairlead: [x, y, z] (body frame), anchor: [x, y, z] (world),
+/// segments: [...]}` becomes an anchor point `<name>/anchor`, a vessel point `<name>/fairlead`
+/// and a line between them.
+void readVesselLines(const YAML::Node& node, const Item& vessel_item, const Catalogue& cat, SystemProblem& sp,
+                     std::map<std::string, std::size_t>& point_index, std::vector<std::string>& point_names) {
+  const Item lines_item{node, vessel_item.path + ".lines", markOf(node, vessel_item.mark)};
+  const std::vector<Item> items = listItems(lines_item);
+  if (items.empty()) lines_item.fail("needs at least one line");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const Map m(items[i], {"name", "fairlead", "anchor", "segments"});
+    SystemLine l;
+    l.name = m.has("name") ? readString(m.at("name")) : "line" + std::to_string(sp.lines.size());
+    for (const SystemLine& other : sp.lines)
+      if (other.name == l.name) m.at("name").fail("duplicate line name");
+    SystemPoint anchor, fairlead;
+    anchor.name = l.name + "/anchor";
+    anchor.type = SystemPoint::Type::Anchor;
+    readPosition(m.required("anchor"), anchor.x, anchor.y, anchor.z);
+    anchor.position_given = true;
+    fairlead.name = l.name + "/fairlead";
+    fairlead.type = SystemPoint::Type::Vessel;
+    readPosition(m.required("fairlead"), fairlead.body_offset.x(), fairlead.body_offset.y(), fairlead.body_offset.z());
+    fairlead.position_given = true;
+    for (const SystemPoint* pt : {&anchor, &fairlead}) {
+      if (point_index.count(pt->name)) m.at("name").fail("the point " + pt->name + " exists already");
+      point_index[pt->name] = sp.points.size();
+      point_names.push_back(pt->name);
+      sp.points.push_back(*pt);
+    }
+    l.from = point_index[anchor.name];
+    l.to = point_index[fairlead.name];
+    Problem tmp;
+    readLine(m.required("segments"), tmp, cat.mat_index, cat.mat_names, cat.body_index, cat.body_names);
+    l.segments = tmp.segments;
+    sp.lines.push_back(l);
+  }
+}
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+/// vessel.pose: `position` [x, y, z] (world, m; default 0) and either `orientation` {x, y, z, w}
+/// (a unit quaternion, body -> world) or `roll_deg`, `pitch_deg`, `yaw_deg` (default 0).
+RigidPose readPose(const Item& it) {
+  const Map m(it, {"position", "orientation", "roll_deg", "pitch_deg", "yaw_deg"});
+  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+  if (m.has("position")) readPosition(m.at("position"), pos.x(), pos.y(), pos.z());
+  const bool euler = m.has("roll_deg") || m.has("pitch_deg") || m.has("yaw_deg");
+  if (m.has("orientation")) {
+    if (euler) m.at("orientation").fail("give either orientation or roll_deg/pitch_deg/yaw_deg, not both");
+    const Map q(m.at("orientation"), {"x", "y", "z", "w"});
+    RigidPose p;
+    p.position = pos;
+    p.orientation = Eigen::Quaterniond(q.number("w"), q.number("x"), q.number("y"), q.number("z"));
+    const std::string e = p.validate(it.path);
+    if (!e.empty()) m.at("orientation").fail("not a unit quaternion (" + e + ")");
+    p.orientation.normalize();
+    return p;
+  }
+  return RigidPose::fromRollPitchYaw(pos, kDegToRad * m.number("roll_deg", 0.0, Range::Any),
+                                     kDegToRad * m.number("pitch_deg", 0.0, Range::Any),
+                                     kDegToRad * m.number("yaw_deg", 0.0, Range::Any));
+}
+
 /// A system file (docs/problem_format.md, "Systems"): `points` and `lines` instead of `line`,
-/// `anchor` and `top`.
+/// `anchor` and `top`; and/or a `vessel:` with its lines from anchors to fairleads.
 SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
   const Item rit{root, "", markOf(root, YAML::Mark::null_mark())};
   if (!root.IsMap()) throw ProblemError("top level: expected a map" + lineSuffix(rit.mark));
   const Map top(rit, {"name", "model", "environment", "materials", "bodies", "points", "lines", "solver",
-                      "dynamics"});
+                      "dynamics", "vessel"});
   SystemProblem sp;
   if (top.has("name")) sp.name = readString(top.at("name"));
   if (top.has("model")) sp.formulation = readModel(top.at("model"));
@@ -52,9 +115,24 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
   readCatalogue(top, sp.materials, sp.bodies, cat);
   if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), sp.static_options);
 
+  // The vessel: its frame and pose; its lines come after the system's own.
+  const bool vessel_lines = presentAndNotNull(top, "vessel") && top.at("vessel").node.IsMap() &&
+                            top.at("vessel").node["lines"];
+  if (presentAndNotNull(top, "vessel")) {
+    const Map vm(top.at("vessel"), {"frame", "pose", "lines", "motion_table"});
+    sp.vessel.present = true;
+    if (vm.has("frame")) sp.vessel.frame = readString(vm.at("frame"));
+    if (vm.has("motion_table")) {
+      const std::filesystem::path f(readString(vm.at("motion_table")));
+      sp.vessel.motion_table = (f.is_relative() && !base_dir.empty() ? std::filesystem::path(base_dir) / f : f).string();
+    }
+    if (vm.has("pose")) sp.vessel.pose = readPose(vm.at("pose"));
+  }
+
   // Points, in file order.
   std::map<std::string, std::size_t> point_index;
   std::vector<std::string> point_names;
+  if (!vessel_lines || top.has("points")) {
   const Item pit = top.required("points");
   if (!pit.node.IsMap()) pit.wrongType("a map name -> {type, position, ...}");
   for (auto kv : pit.node) {
@@ -74,9 +152,14 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
     else if (t == "fixed") pt.type = SystemPoint::Type::Fixed;
     else if (t == "buoy") pt.type = SystemPoint::Type::Buoy;
     else if (t == "body") pt.type = SystemPoint::Type::Body;
-    else throw ProblemError(ti.path + " = " + quoted(t) + ": unknown point type (known: anchor, fixed, buoy, body)" +
-                            lineSuffix(ti.mark));
-    if (m.has("position")) {
+    else if (t == "vessel") pt.type = SystemPoint::Type::Vessel;
+    else throw ProblemError(ti.path + " = " + quoted(t) +
+                            ": unknown point type (known: anchor, fixed, buoy, body, vessel)" + lineSuffix(ti.mark));
+    if (pt.type == SystemPoint::Type::Vessel) {  // a fairlead: its place in the vessel's body frame
+      if (!sp.vessel.present) ti.fail("a vessel point needs the file's `vessel:` section (frame and pose)");
+      readPosition(m.required("position"), pt.body_offset.x(), pt.body_offset.y(), pt.body_offset.z());
+      pt.position_given = true;
+    } else if (m.has("position")) {
       readPosition(m.at("position"), pt.x, pt.y, pt.z);
       pt.position_given = true;
     } else if (!pt.free()) {
@@ -90,10 +173,11 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
     point_names.push_back(name);
     sp.points.push_back(pt);
   }
+  }
 
   // Lines, each from its lower end (a point or `free`) to its upper end.
-  const std::vector<Item> lit = listItems(top.required("lines"));
-  if (lit.empty()) top.at("lines").fail("needs at least one line");
+  const std::vector<Item> lit = vessel_lines && !top.has("lines") ? std::vector<Item>{} : listItems(top.required("lines"));
+  if (lit.empty() && !vessel_lines) top.at("lines").fail("needs at least one line");
   for (std::size_t i = 0; i < lit.size(); ++i) {
     const Map m(lit[i], {"name", "from", "to", "segments", "end_body"});
     SystemLine l;
@@ -108,6 +192,8 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
     l.segments = tmp.segments;
     sp.lines.push_back(l);
   }
+  if (vessel_lines) readVesselLines(top.at("vessel").node["lines"], top.at("vessel"), cat, sp, point_index, point_names);
+  sp.placeVessel(sp.vessel.pose);
   if (presentAndNotNull(top, "dynamics")) {
     double longest = 0.0;
     for (const SystemLine& l : sp.lines) {
@@ -132,7 +218,7 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
 bool isSystemText(const std::string& yaml_text) {
   try {
     const YAML::Node root = parseYaml(yaml_text);
-    return root.IsMap() && root["lines"] && root["points"];
+    return root.IsMap() && ((root["lines"] && root["points"]) || root["vessel"]);
   } catch (const std::exception&) {
     return false;
   }

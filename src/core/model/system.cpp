@@ -51,9 +51,31 @@ Problem SystemProblem::lineProblem(std::size_t i, const std::vector<double>& xyz
   return p;
 }
 
+void SystemProblem::placeVessel(const RigidPose& pose) {
+  vessel.pose = pose;
+  for (SystemPoint& pt : points) {
+    if (pt.type != SystemPoint::Type::Vessel) continue;
+    const Eigen::Vector3d w = pose.apply(pt.body_offset);
+    pt.x = w.x();
+    pt.y = w.y();
+    pt.z = w.z();
+  }
+}
+
+bool SystemProblem::hasVesselPoints() const {
+  for (const SystemPoint& pt : points)
+    if (pt.type == SystemPoint::Type::Vessel) return true;
+  return false;
+}
+
 std::string SystemProblem::validate() const {
   if (points.empty()) return "points: at least one point is needed";
   if (lines.empty()) return "lines: at least one line is needed";
+  if (vessel.present) {
+    const std::string e = vessel.pose.validate("vessel.pose");
+    if (!e.empty()) return e;
+    if (vessel.frame.empty()) return "vessel.frame = \"\": needs a frame name (e.g. base_link)";
+  }
   const std::size_t np = points.size();
   std::vector<int> used(np, 0);
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -73,6 +95,10 @@ std::string SystemProblem::validate() const {
     if (!used[p]) return "points." + pt.name + ": not joined to any line";
     if (pt.type == SystemPoint::Type::Body && pt.body >= bodies.size())
       return "points." + pt.name + ".body: unknown body";
+    if (pt.type == SystemPoint::Type::Vessel && !vessel.present)
+      return "points." + pt.name + ".type = vessel: the file has no `vessel:` section (its frame and pose)";
+    if (pt.type == SystemPoint::Type::Vessel && !pt.body_offset.allFinite())
+      return "points." + pt.name + ".position (body frame) must be finite";
     if (!std::isfinite(pt.x) || !std::isfinite(pt.y) || !std::isfinite(pt.z))
       return "points." + pt.name + ".position = (" + fmt(pt.x) + ", " + fmt(pt.y) + ", " + fmt(pt.z) +
              "): must be finite";
@@ -81,11 +107,14 @@ std::string SystemProblem::validate() const {
              ": must be 0 with model: 2d (the 2-D lines lie in the plane y = 0); use model: 3d";
   }
   // One connected piece holding at least one anchor or fixed point (else it floats away:
-  // statically undetermined), found by a flood fill over the lines.
+  // statically undetermined), found by a flood fill over the lines (and the vessel's hull).
   std::vector<int> piece(np, -1);
   std::function<void(std::size_t, int)> fill = [&](std::size_t p, int id) {
     if (piece[p] >= 0) return;
     piece[p] = id;
+    if (points[p].type == SystemPoint::Type::Vessel)  // the vessel's points are joined by its hull
+      for (std::size_t q = 0; q < np; ++q)
+        if (points[q].type == SystemPoint::Type::Vessel) fill(q, id);
     for (const SystemLine& l : lines) {
       if (l.from == SystemLine::kFreeEnd) continue;
       if (l.from == p) fill(l.to, id);

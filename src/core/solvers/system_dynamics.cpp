@@ -9,6 +9,7 @@
 #include "mooring_dynamics/core/solvers/dynamics3d.hpp"
 #include "mooring_dynamics/core/equations/equations2d.hpp"
 #include "mooring_dynamics/core/model/top_motion.hpp"
+#include "mooring_dynamics/core/numerics/thread_pool.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -38,6 +39,30 @@ struct SystemDynamics::Impl {
   Eigen::VectorXd X, V, A;
   Eigen::MatrixXd J;  ///< kept point Jacobian (free points x free points, 3 each)
   long iterations = 0, line_steps = 0;
+  std::unique_ptr<ThreadPool> pool;
+  std::function<RigidMotion(double)> vessel_motion;  ///< world frame; holds at the reference pose by default
+  RigidPose vessel_pose;                             ///< now
+  std::vector<std::size_t> vessel_lines;             ///< lines with an end on the vessel and none on a free point
+
+  bool isVessel(std::size_t p) const { return p != SystemLine::kFreeEnd && system.points[p].type == SystemPoint::Type::Vessel; }
+
+  /// A fairlead's path: p + R r and v + omega x (R r) of the vessel's motion.
+  std::function<TopState(double)> fairleadMotion(std::size_t p) const {
+    const Eigen::Vector3d r = system.points[p].body_offset;
+    const std::function<RigidMotion(double)> motion = vessel_motion;
+    return [motion, r](double tau) {
+      const RigidMotion m = motion(tau);
+      const Eigen::Vector3d x = m.pose.apply(r), v = m.pointVelocity(r);
+      TopState s;
+      s.x = x[0];
+      s.y = x[1];
+      s.z = x[2];
+      s.vx = v[0];
+      s.vy = v[1];
+      s.vz = v[2];
+      return s;
+    };
+  }
 
   double mass(std::size_t p) const {
     const SystemPoint& pt = system.points[p];
@@ -79,7 +104,7 @@ struct SystemDynamics::Impl {
   }
 };
 
-SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions& options)
+SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions& options, int threads)
     : impl_(std::make_unique<Impl>()) {
   Impl& im = *impl_;
   const std::string e = system.validate();
@@ -89,8 +114,14 @@ SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions
   if (options.threads != 1)  // (a second thread per line would have them compete for the cores)
     throw std::invalid_argument("dynamics.threads = " + std::to_string(options.threads) +
                                 ": the lines of a system run on one thread (must be 1)");
+  if (threads < 1) throw std::invalid_argument("threads = " + std::to_string(threads) + ": must be >= 1");
   im.system = system;
   im.system.formulation = Formulation::ThreeD;  // the lines run on the 3-D solver
+  im.system.placeVessel(system.vessel.pose);
+  im.vessel_pose = im.system.vessel.pose;
+  const RigidPose start = im.vessel_pose;
+  im.vessel_motion = [start](double) { return RigidSegment::hold(start).at(0.0); };
+  im.pool = std::make_unique<ThreadPool>(threads);
   im.opt = options;
   im.statics = solveSystemStatic(im.system);
   if (!im.statics.summary.converged)
@@ -119,7 +150,24 @@ SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions
     im.lines.push_back(std::make_unique<DynamicSolver3D>(p));
     im.lines_at[system.lines[i].to].push_back(i);
     if (system.lines[i].from != SystemLine::kFreeEnd) im.lines_at[system.lines[i].from].push_back(i);
+    const SystemLine& l = system.lines[i];
+    const bool at_free = system.points[l.to].free() || (l.from != SystemLine::kFreeEnd && system.points[l.from].free());
+    if (!at_free && (im.isVessel(l.to) || im.isVessel(l.from))) im.vessel_lines.push_back(i);
   }
+}
+
+void SystemDynamics::setVesselMotion(std::function<RigidMotion(double)> motion) {
+  if (!motion) throw std::invalid_argument("setVesselMotion: empty motion");
+  impl_->vessel_motion = std::move(motion);
+}
+
+const RigidPose& SystemDynamics::vesselPose() const { return impl_->vessel_pose; }
+int SystemDynamics::threads() const { return impl_->pool->threads(); }
+
+VesselWrench SystemDynamics::vesselWrench() const {
+  std::vector<StaticResult> lines;
+  for (const auto& l : impl_->lines) lines.push_back(l->snapshot());
+  return core::vesselWrench(impl_->system, impl_->vessel_pose, lines);
 }
 
 SystemDynamics::~SystemDynamics() = default;
@@ -201,26 +249,44 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
     // Run every line with an end at one of `pts` through the step with the points at X1; false
     // when a line's step fails.
     std::string why;
-    auto runLines = [&](const std::vector<std::size_t>& pts, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
-      std::vector<char> done(im.lines.size(), 0);
-      for (std::size_t p : pts)
-        for (std::size_t i : im.lines_at[p]) {
-          if (done[i]) continue;
-          done[i] = 1;
-          DynamicSolver3D& line = *im.lines[i];
-          const SystemLine& sl = im.system.lines[i];
-          line.restore(*saved[i]);
-          line.setTopInput(pointMotion(sl.to, X1, V1));
-          if (sl.from != SystemLine::kFreeEnd && im.system.points[sl.from].free())
-            line.setLowerEndInput(pointMotion(sl.from, X1, V1));
-          ++im.line_steps;
-          const StepReport rep = line.advanceTo(t1);
-          if (!rep.ok) {
-            why = "line " + sl.name + ": " + rep.message;
-            return false;
-          }
+    // The path of a line end at point p over the step: the vessel's fairlead path, or the
+    // point's own motion.
+    auto endMotion = [&](std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      return im.isVessel(p) ? im.fairleadMotion(p) : std::function<TopState(double)>(pointMotion(p, X1, V1));
+    };
+    // Run the given lines through the step, side by side on the pool (each writes only its own
+    // solver and report); false, naming the first line in line order that failed.
+    auto runSet = [&](const std::vector<std::size_t>& set, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      std::vector<StepReport> reports(set.size());
+      im.pool->parallelFor(set.size(), [&](std::size_t k) {
+        const std::size_t i = set[k];
+        DynamicSolver3D& line = *im.lines[i];
+        const SystemLine& sl = im.system.lines[i];
+        line.restore(*saved[i]);
+        line.setTopInput(endMotion(sl.to, X1, V1));
+        if (sl.from != SystemLine::kFreeEnd && (im.system.points[sl.from].free() || im.isVessel(sl.from)))
+          line.setLowerEndInput(endMotion(sl.from, X1, V1));
+        reports[k] = line.advanceTo(t1);
+      });
+      im.line_steps += static_cast<long>(set.size());
+      for (std::size_t k = 0; k < set.size(); ++k)
+        if (!reports[k].ok) {
+          why = "line " + im.system.lines[set[k]].name + ": " + reports[k].message;
+          return false;
         }
       return true;
+    };
+    // Run every line with an end at one of `pts` through the step with the points at X1.
+    auto runLines = [&](const std::vector<std::size_t>& pts, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      std::vector<char> done(im.lines.size(), 0);
+      std::vector<std::size_t> set;
+      for (std::size_t p : pts)
+        for (std::size_t i : im.lines_at[p])
+          if (!done[i]) {
+            done[i] = 1;
+            set.push_back(i);
+          }
+      return runSet(set, X1, V1);
     };
     // Force balance of every free point: M a - (pulls + own load).
     double scale = 1.0;
@@ -256,6 +322,8 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
     // Predictor: constant acceleration.
     Eigen::VectorXd X1 = im.X + dt * im.V + 0.5 * dt * dt * im.A, V1, A1, G;
     kinematics(X1, V1, A1);
+    // The lines on the vessel that touch no free point: once per step, side by side.
+    if (!runSet(im.vessel_lines, X1, V1)) return fail(why);
     if (!runLines(im.free_pts, X1, V1)) return fail(why);
     residual(X1, V1, A1, G);
     bool converged = m == 0;
@@ -295,6 +363,17 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
     if (!converged && G.cwiseAbs().maxCoeff() >= kForceTolerance * scale)
       return fail("the point iteration did not converge: force residual " + std::to_string(G.cwiseAbs().maxCoeff()) +
                   " N");
+    // The vessel's points are where its motion puts them (the Newmark values above are only
+    // meaningful for the free points).
+    const RigidMotion vm = im.vessel_motion(t1);
+    for (std::size_t p = 0; p < im.system.points.size(); ++p) {
+      if (!im.isVessel(p)) continue;
+      const Eigen::Vector3d r = im.system.points[p].body_offset;
+      X1.segment<3>(static_cast<Eigen::Index>(3 * p)) = vm.pose.apply(r);
+      V1.segment<3>(static_cast<Eigen::Index>(3 * p)) = vm.pointVelocity(r);
+      A1.segment<3>(static_cast<Eigen::Index>(3 * p)).setZero();
+    }
+    im.vessel_pose = vm.pose;
     im.X = X1;
     im.V = V1;
     im.A = A1;

@@ -10,6 +10,9 @@
 // coordinate re-solving only the lines at that point. The outer system has 3 unknowns per free
 // point, so the whole solve stays linear in the number of nodes: the paper's outer iteration of
 // section 5.1 ("consecutively better guesses") made a Newton iteration.
+//
+// A moored vessel (a rigid body with a full pose) is a system whose `vessel` points are its
+// fairleads: fixed in the body frame, placed in the world by the vessel's pose (placeVessel).
 #pragma once
 
 #include <string>
@@ -17,21 +20,26 @@
 
 #include "mooring_dynamics/core/model/model.hpp"
 #include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/core/model/rigid_pose.hpp"
 
 namespace mooring_dynamics {
 namespace core {
 
-/// A connection point of a system. Positions in the problem frame [m].
+/// A connection point of a system. Positions in the problem (world) frame [m].
 struct SystemPoint {
   enum class Type {
     Anchor,  ///< fixed on (or above) the seabed
-    Fixed,   ///< fixed anywhere, e.g. a vessel's fairlead
+    Fixed,   ///< fixed anywhere in the world
     Buoy,    ///< a free surface buoy (SurfaceBuoy: its draft, current drag and wind balance the lines)
-    Body     ///< a free submerged body (net buoyancy or weight, drag), e.g. a junction float or clump
+    Body,    ///< a free submerged body (net buoyancy or weight, drag), e.g. a junction float or clump
+    Vessel   ///< a fairlead: fixed to the vessel at `body_offset` in its body frame, moves with its pose
   };
   std::string name;
   Type type = Type::Anchor;
-  double x = 0.0, y = 0.0, z = 0.0;  ///< fixed position, or the initial guess of a free point
+  /// World position: fixed, the initial guess of a free point, or (Vessel) the fairlead where
+  /// the vessel's pose puts it (SystemProblem::placeVessel keeps it so).
+  double x = 0.0, y = 0.0, z = 0.0;
+  Eigen::Vector3d body_offset = Eigen::Vector3d::Zero();  ///< Vessel: fairlead in the body frame [m]
   bool position_given = false;       ///< free points: x, y, z is a user guess
   SurfaceBuoy buoy;                  ///< Buoy
   std::size_t body = static_cast<std::size_t>(-1);  ///< Body: index into SystemProblem::bodies
@@ -49,6 +57,16 @@ struct SystemLine {
   std::size_t end_body = Problem::kNoBody;  ///< free lower end: body hanging there, or kNoBody
 };
 
+/// The rigid body the `vessel` points are fixed to (a ship, a spar or disk buoy, a platform).
+struct Vessel {
+  bool present = false;            ///< the file has a `vessel:` section
+  std::string frame = "base_link"; ///< name of its body frame (tf, REP 105 style)
+  RigidPose pose;                  ///< reference pose (statics, the start of a dynamic run), world frame
+  /// `vessel.motion_table`: CSV of the vessel's pose in time for `cable_sim dynamic` (t, x, y, z,
+  /// qx, qy, qz, qw; world frame), path resolved against the problem file's folder; "" = none.
+  std::string motion_table;
+};
+
 struct SystemProblem {
   std::string name;
   Formulation formulation = Formulation::ThreeD;
@@ -57,6 +75,7 @@ struct SystemProblem {
   std::vector<Body> bodies;
   std::vector<SystemPoint> points;
   std::vector<SystemLine> lines;
+  Vessel vessel;
   StaticOptions static_options;  ///< for every line's solve
   /// `dynamics:` of the file (duration, dt, scheme, tolerances; no top motion: the free points
   /// move by themselves) for SystemDynamics / `cable_sim dynamic`.
@@ -68,6 +87,10 @@ struct SystemProblem {
   std::string validate() const;
   /// The single-line problem of line i with its ends at the given positions of its points.
   Problem lineProblem(std::size_t i, const std::vector<double>& xyz) const;
+  /// Sets vessel.pose and puts every `vessel` point where that pose takes its body offset.
+  void placeVessel(const RigidPose& pose);
+  /// True when some point is a `vessel` point.
+  bool hasVesselPoints() const;
 };
 
 }  // namespace core

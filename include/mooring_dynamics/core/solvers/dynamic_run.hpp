@@ -9,10 +9,12 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "mooring_dynamics/core/solvers/dynamics2d.hpp"
 #include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/model/top_motion.hpp"
 #include "mooring_dynamics/core/numerics/newton.hpp"
 
 namespace mooring_dynamics {
@@ -40,6 +42,33 @@ inline NewtonOptions stepNewtonOptions(const DynamicOptions& o) {
 inline bool sameStepSize(double a, double b) {
   constexpr double kRelative = 1e-9;
   return std::abs(a - b) <= kRelative * std::max(std::abs(a), std::abs(b));
+}
+
+/// The top's path between two samples as the lockstep drivers and position tables give it: the
+/// position linear from (x0, y0, z0) at t0 to (x1, y1, z1) at t1 > t0, held outside, and the
+/// velocity the segment's slope at every tau (also at its ends). The 2-D form drops y.
+inline TopState segmentTopState(double tau, double t0, double x0, double y0, double z0, double t1, double x1, double y1,
+                                double z1) {
+  const double span = t1 - t0;
+  TopState in;
+  const double w = std::clamp((tau - t0) / span, 0.0, 1.0);
+  in.x = x0 + w * (x1 - x0);
+  in.y = y0 + w * (y1 - y0);
+  in.z = z0 + w * (z1 - z0);
+  in.vx = (x1 - x0) / span;
+  in.vy = (y1 - y0) / span;
+  in.vz = (z1 - z0) / span;
+  return in;
+}
+inline TopInput segmentTopInput(double tau, double t0, double x0, double z0, double t1, double x1, double z1) {
+  const double span = t1 - t0;
+  TopInput in;
+  const double w = std::clamp((tau - t0) / span, 0.0, 1.0);
+  in.x = x0 + w * (x1 - x0);
+  in.z = z0 + w * (z1 - z0);
+  in.vx = (x1 - x0) / span;
+  in.vz = (z1 - z0) / span;
+  return in;
 }
 
 namespace detail {
@@ -143,10 +172,51 @@ DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(do
   };
   record(0.0, 0);
   out.completed = true;
+  // A position table is followed as the lockstep node follows its samples: row by row, the top
+  // on the segment from the previous row (the first from the static top) to the next, advanced
+  // to every row time; the same samples through the node give the same bits.
+  const std::vector<TopMotion::Row>& rows = opt.top_motion.table;
+  const bool by_rows = opt.top_motion.type == TopMotion::Type::PositionTable && !rows.empty();
+  std::size_t next_row = 0;
+  double seg_t = 0.0;
+  double seg_p[3] = {solver.initialStatic().nodes.back().x, solver.initialStatic().nodes.back().y,
+                     solver.initialStatic().nodes.back().z};
+  while (by_rows && next_row < rows.size() && !(rows[next_row].t > 0.0)) ++next_row;  // the start row
+  auto setSegment = [&]() {
+    const TopMotion::Row r = rows[next_row];
+    const double t0 = seg_t, x0 = seg_p[0], y0 = seg_p[1], z0 = seg_p[2];
+    if constexpr (std::is_same_v<Solver, DynamicSolver2D>)
+      solver.setTopInput([=](double tau) { return segmentTopInput(tau, t0, x0, z0, r.t, r.x, r.z); });
+    else
+      solver.setTopInput([=](double tau) { return segmentTopState(tau, t0, x0, y0, z0, r.t, r.x, r.y, r.z); });
+  };
+  // Advance to t, row by row when following a table (the rows' times are step ends).
+  auto advance = [&](double t) {
+    StepReport rep;
+    while (by_rows && next_row < rows.size() && rows[next_row].t <= t) {
+      setSegment();
+      rep = solver.advanceTo(rows[next_row].t);
+      if (!rep.ok) return rep;
+      seg_t = rows[next_row].t;
+      seg_p[0] = rows[next_row].x;
+      seg_p[1] = rows[next_row].y;
+      seg_p[2] = rows[next_row].z;
+      ++next_row;
+    }
+    if (by_rows && next_row < rows.size()) setSegment();
+    if (by_rows && next_row >= rows.size()) {  // after the last row: held there, at rest
+      const double x = seg_p[0], y = seg_p[1], z = seg_p[2], t_last = seg_t;
+      if constexpr (std::is_same_v<Solver, DynamicSolver2D>)
+        solver.setTopInput([=](double) { return segmentTopInput(t_last + 1.0, t_last, x, z, t_last + 1.0, x, z); });
+      else
+        solver.setTopInput([=](double) { return segmentTopState(t_last + 1.0, t_last, x, y, z, t_last + 1.0, x, y, z); });
+    }
+    return solver.time() < t ? solver.advanceTo(t) : rep;
+  };
   const bool partial_end = opt.duration - samples * dout > 1e-9 * dout;
   for (long k = 1; k <= samples + (partial_end ? 1 : 0); ++k) {
     const double t = k <= samples ? k * dout : opt.duration;
-    const StepReport rep = solver.advanceTo(t);
+    const StepReport rep = advance(t);
     if (!rep.ok) {
       out.completed = false;
       out.message = rep.message;

@@ -12,6 +12,13 @@
 // restore), and the residual is each point's force balance M a = sum of the lines' pulls + its
 // own load. The point Jacobian (finite differences, 3 unknowns per point) is kept across steps
 // and refreshed when the iteration slows. Cost per step: the lines' steps times the iterations.
+//
+// A moored vessel: `vessel` points (fairleads) follow the vessel's prescribed rigid motion
+// (setVesselMotion: pose, velocity and angular velocity in time); every line with an end on the
+// vessel is advanced through each step with that end on its fairlead's path, p + R r and
+// v + omega x (R r). Lines that touch no free point are independent within a step and run on
+// the thread pool (`threads`); every result is summed in line order, so the bits do not depend
+// on the thread count.
 #pragma once
 
 #include <array>
@@ -22,7 +29,9 @@
 
 #include "mooring_dynamics/core/model/dynamics_options.hpp"
 #include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/core/model/rigid_pose.hpp"
 #include "mooring_dynamics/core/solvers/system_statics.hpp"
+#include "mooring_dynamics/core/solvers/vessel_statics.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -32,7 +41,9 @@ class SystemDynamics {
   /// Solves the system's statics and starts every line and point from them, at rest. Throws
   /// std::invalid_argument for an invalid system or invalid options; std::runtime_error when the
   /// statics fail.
-  SystemDynamics(const SystemProblem& system, const DynamicOptions& options);
+  /// `threads` >= 1: threads that advance the lines side by side (each line on one thread).
+  /// The vessel (if any) starts at rest at system.vessel.pose.
+  SystemDynamics(const SystemProblem& system, const DynamicOptions& options, int threads = 1);
   ~SystemDynamics();
   SystemDynamics(const SystemDynamics&) = delete;
   SystemDynamics& operator=(const SystemDynamics&) = delete;
@@ -40,6 +51,15 @@ class SystemDynamics {
   /// An external force [N] (problem frame) on point `point` as a function of time [s], e.g. a
   /// pull on the buoy. Only free points move; a force on a fixed point is ignored.
   void setPointForce(std::size_t point, std::function<std::array<double, 3>(double)> force);
+
+  /// The vessel's motion as a function of time [s] (world frame), defined for every t >= time();
+  /// by default it holds still at system.vessel.pose. E.g. RigidSegment::at between two samples.
+  void setVesselMotion(std::function<RigidMotion(double)> motion);
+  /// The vessel's pose now (system.vessel.pose before any motion).
+  const RigidPose& vesselPose() const;
+  /// The lines' wrench on the vessel now (about its body origin; zero without vessel points).
+  VesselWrench vesselWrench() const;
+  int threads() const;
 
   /// Advance to t_end in base steps of options.dt (the last one shortened). False, with the
   /// reason in `message`, when a line's step or the point iteration fails; the state then stays

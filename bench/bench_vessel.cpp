@@ -1,0 +1,102 @@
+// The moored vessel in lockstep (issue 19): config/spread_mooring.yaml (eight 700 m chain lines,
+// 200 nodes each, 3-D, dt 0.1 s) driven by its motion table through VesselLockstep, as the node
+// and `cable_sim dynamic` drive it.
+//
+// BM_VesselLockstep/<lines>/<threads>: the first <lines> of the file's lines (16: the eight
+// twice, a second line beside each), 20 s of the table's motion at its 10 Hz rows, lines on
+// <threads> threads. Timed: every onSample (pose in -> wrench out), the static start excluded.
+// Counters: real_time_factor (simulated / wall), latency_median_ms and latency_p99_ms (wall time
+// of one sample), ms_per_line_sample (median latency / lines / threads: the cost that should
+// stay flat as lines are added).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "bench_configs.hpp"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/io/vessel_motion_io.hpp"
+#include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
+
+namespace md = mooring_dynamics::core;
+
+namespace {
+
+constexpr double kSimulated = 20.0;  // [s] of the motion table per run
+
+void BM_VesselLockstep(benchmark::State& state) {
+  const std::size_t lines = static_cast<std::size_t>(state.range(0));
+  const int threads = static_cast<int>(state.range(1));
+  const std::string root = mooring_dynamics::bench::packageRoot();
+  md::SystemProblem s;
+  std::vector<md::PoseSample> samples;
+  try {
+    s = md::loadSystemFromFile(root + "/config/spread_mooring.yaml");
+    samples = md::loadVesselMotionTable(s.vessel.motion_table);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  // Lines 0 .. lines-1; beyond the file's, copies beside the first ones.
+  const std::size_t file_lines = s.lines.size();
+  for (std::size_t i = file_lines; i < lines; ++i) {
+    md::SystemLine l = s.lines[i % file_lines];
+    l.name += "_b";
+    s.lines.push_back(l);
+  }
+  s.lines.resize(lines);
+  std::vector<char> used(s.points.size(), 0);
+  for (const auto& l : s.lines) used[l.from] = used[l.to] = 1;
+  // Drop the points of removed lines (and renumber).
+  std::vector<std::size_t> index(s.points.size());
+  std::vector<md::SystemPoint> kept;
+  for (std::size_t p = 0; p < s.points.size(); ++p)
+    if (used[p]) {
+      index[p] = kept.size();
+      kept.push_back(s.points[p]);
+    }
+  for (auto& l : s.lines) {
+    l.from = index[l.from];
+    l.to = index[l.to];
+  }
+  s.points = kept;
+  md::VesselLockstepOptions lo;
+  lo.threads = threads;
+  std::vector<double> latency;
+  double simulated = 0.0, wall = 0.0;
+  for (auto _ : state) {
+    md::VesselLockstep run(s, s.dynamics, lo);
+    double t_end = samples.front().t + kSimulated, total = 0.0;
+    for (const md::PoseSample& p : samples) {
+      if (p.t > t_end) break;
+      const auto a = std::chrono::steady_clock::now();
+      const auto r = run.onSample(p.t, p.pose);
+      benchmark::DoNotOptimize(run.wrench());
+      const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+      if (r.outcome == md::VesselLockstep::Outcome::RecoveredFailure) state.SkipWithError(r.message.c_str());
+      latency.push_back(dt);
+      total += dt;
+    }
+    state.SetIterationTime(total);
+    simulated += kSimulated;
+    wall += total;
+  }
+  std::sort(latency.begin(), latency.end());
+  const double median = latency[latency.size() / 2], p99 = latency[std::min(latency.size() - 1, latency.size() * 99 / 100)];
+  state.counters["real_time_factor"] = simulated / wall;
+  state.counters["latency_median_ms"] = 1e3 * median;
+  state.counters["latency_p99_ms"] = 1e3 * p99;
+  state.counters["ms_per_line_sample"] = 1e3 * median * threads / static_cast<double>(lines);
+}
+
+}  // namespace
+
+BENCHMARK(BM_VesselLockstep)
+    ->ArgsProduct({{1, 2, 4, 8, 16}, {1, 2}})
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

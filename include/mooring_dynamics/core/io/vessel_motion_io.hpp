@@ -1,0 +1,29 @@
+// Vessel motion tables: the vessel's pose in time as CSV, one sample a row
+//   t, x, y, z, qx, qy, qz, qw
+// t [s] increasing; x, y, z [m] of the body origin in the world frame (REP 103: x east, y north,
+// z up, z = 0 at the mean surface); qx, qy, qz, qw the unit quaternion body -> world. A header
+// row starting with "t" and lines starting with '#' are skipped. `cable_sim dynamic` feeds the
+// rows to VesselLockstep as the node feeds its pose messages.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mooring_dynamics/core/model/rigid_pose.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+struct PoseSample {
+  double t = 0.0;  ///< [s]
+  RigidPose pose;  ///< world frame
+};
+
+/// Parses the table; throws ProblemError naming the source, the row (1-based line number), the
+/// column and the value for a malformed number, a row of another width, a time that does not
+/// increase or a quaternion that is not of unit norm (kUnitQuaternionTolerance).
+std::vector<PoseSample> parseVesselMotionTable(const std::string& text, const std::string& source);
+std::vector<PoseSample> loadVesselMotionTable(const std::string& path);
+
+}  // namespace core
+}  // namespace mooring_dynamics

@@ -1,0 +1,67 @@
+#include "mooring_dynamics/core/io/vessel_motion_io.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "problem_sections.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+namespace {
+const char* const kColumns[8] = {"t", "x", "y", "z", "qx", "qy", "qz", "qw"};
+}  // namespace
+
+std::vector<PoseSample> parseVesselMotionTable(const std::string& text, const std::string& source) {
+  std::vector<PoseSample> rows;
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#' || line[first] == 't') continue;
+    const std::string where = source + ":" + std::to_string(number);
+    std::vector<double> v;
+    std::stringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) {
+      const std::size_t col = v.size();
+      const char* name = col < 8 ? kColumns[col] : "extra";
+      char* end = nullptr;
+      errno = 0;
+      const double x = std::strtod(cell.c_str(), &end);
+      const std::string rest = end ? std::string(end) : std::string();
+      if (end == cell.c_str() || rest.find_first_not_of(" \t") != std::string::npos || errno == ERANGE ||
+          !std::isfinite(x))
+        throw ProblemError(where + ": column " + name + " = \"" + cell + "\": not a finite number");
+      v.push_back(x);
+    }
+    if (v.size() != 8)
+      throw ProblemError(where + ": " + std::to_string(v.size()) + " values, expected 8 (t, x, y, z, qx, qy, qz, qw)");
+    PoseSample s;
+    s.t = v[0];
+    s.pose.position = Eigen::Vector3d(v[1], v[2], v[3]);
+    s.pose.orientation = Eigen::Quaterniond(v[7], v[4], v[5], v[6]);
+    const std::string bad = s.pose.validate("row");
+    if (!bad.empty()) throw ProblemError(where + ": " + bad);
+    s.pose.orientation.normalize();
+    if (!rows.empty() && !(s.t > rows.back().t))
+      throw ProblemError(where + ": t = " + std::to_string(s.t) + " s must be after the previous row's " +
+                         std::to_string(rows.back().t) + " s");
+    rows.push_back(s);
+  }
+  if (rows.empty()) throw ProblemError(source + ": no rows (expected t, x, y, z, qx, qy, qz, qw)");
+  return rows;
+}
+
+std::vector<PoseSample> loadVesselMotionTable(const std::string& path) {
+  return parseVesselMotionTable(sections::readFileText(path), path);
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics

@@ -1,0 +1,133 @@
+#include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace mooring_dynamics {
+namespace core {
+
+namespace {
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+std::string VesselLockstepOptions::validate() const {
+  if (!(start_tolerance >= 0.0)) return "start_tolerance = " + num(start_tolerance) + " m: must be >= 0";
+  if (!(start_angle_tolerance >= 0.0)) return "start_angle_tolerance = " + num(start_angle_tolerance) + " rad: must be >= 0";
+  if (!(loop_back > 0.0)) return "loop_back = " + num(loop_back) + " s: must be > 0";
+  if (jumps_to_reinit < 1) return "jumps_to_reinit = " + std::to_string(jumps_to_reinit) + ": must be >= 1";
+  if (threads < 1) return "threads = " + std::to_string(threads) + ": must be >= 1";
+  return {};
+}
+
+const char* toString(VesselLockstep::Outcome o) {
+  switch (o) {
+    case VesselLockstep::Outcome::Started: return "started";
+    case VesselLockstep::Outcome::Advanced: return "advanced";
+    case VesselLockstep::Outcome::Reinitialised: return "reinitialised";
+    case VesselLockstep::Outcome::RecoveredFailure: return "recovered from a failure";
+    case VesselLockstep::Outcome::Dropped: return "dropped";
+  }
+  return "?";
+}
+
+VesselLockstep::VesselLockstep(const SystemProblem& system, const DynamicOptions& dynamics,
+                               const VesselLockstepOptions& options)
+    : system_(system), dynamics_(dynamics), options_(options) {
+  const std::string e = options.validate();
+  if (!e.empty()) throw std::invalid_argument(e);
+  sim_ = std::make_unique<SystemDynamics>(system_, dynamics_, options_.threads);
+  last_pose_ = system_.vessel.pose;
+}
+
+VesselLockstep::~VesselLockstep() = default;
+
+double VesselLockstep::solverTime() const { return sim_->time(); }
+
+std::vector<StaticResult> VesselLockstep::lines() const {
+  std::vector<StaticResult> out;
+  for (std::size_t i = 0; i < system_.lines.size(); ++i) out.push_back(sim_->line(i));
+  return out;
+}
+
+VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, Outcome outcome, const std::string& why) {
+  Result r;
+  const RigidPose& ref = system_.vessel.pose;
+  const bool at_file_pose = (pose.position - ref.position).norm() <= options_.start_tolerance &&
+                            pose.orientation.angularDistance(ref.orientation) <= options_.start_angle_tolerance;
+  if (!(at_file_pose && pristine_)) {
+    SystemProblem s = system_;
+    s.placeVessel(at_file_pose ? ref : pose);
+    try {
+      sim_ = std::make_unique<SystemDynamics>(s, dynamics_, options_.threads);
+    } catch (const std::exception& e) {
+      ++dropped_;
+      r.message = "cannot start at this pose: " + std::string(e.what());
+      return r;
+    }
+  }
+  pristine_ = false;
+  started_ = true;
+  t0_ = t;
+  last_t_ = t;
+  last_pose_ = pose;
+  jumps_ = 0;
+  r.outcome = outcome;
+  r.publish = true;
+  r.message = why;
+  return r;
+}
+
+VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_in) {
+  Result r;
+  std::string bad = pose_in.validate("pose");
+  if (bad.empty() && !std::isfinite(t)) bad = "time = " + num(t) + ": must be finite";
+  if (!bad.empty()) {
+    ++dropped_;
+    r.message = bad;
+    return r;
+  }
+  RigidPose pose = pose_in;
+  pose.orientation.normalize();
+  if (!started_) return start(t, pose, Outcome::Started, "");
+  if (t <= last_t_) {
+    if (last_t_ - t > options_.loop_back)
+      return start(t, pose, Outcome::Reinitialised, "time went back by " + num(last_t_ - t) + " s (bag loop)");
+    ++dropped_;
+    r.message = "time " + num(t) + " s not after the last sample's " + num(last_t_) + " s";
+    return r;
+  }
+  const double gap = t - last_t_;
+  if (options_.max_gap > 0.0 && gap > options_.max_gap)
+    return start(t, pose, Outcome::Reinitialised, "gap of " + num(gap) + " s since the last sample");
+  const double speed = (pose.position - last_pose_.position).norm() / gap;
+  if (options_.max_speed > 0.0 && speed > options_.max_speed) {
+    if (++jumps_ >= options_.jumps_to_reinit) return start(t, pose, Outcome::Reinitialised, "the vessel jumped");
+    ++dropped_;
+    r.message = "jump implying " + num(speed) + " m/s (max_speed " + num(options_.max_speed) + ")";
+    return r;
+  }
+  jumps_ = 0;
+  const RigidSegment seg(last_t_ - t0_, last_pose_, t - t0_, pose);
+  sim_->setVesselMotion([seg](double tau) { return seg.at(tau); });
+  std::string why;
+  if (!sim_->advanceTo(t - t0_, &why))
+    return start(t, pose, Outcome::RecoveredFailure, "restarted from statics after a failure: " + why);
+  last_t_ = t;
+  last_pose_ = pose;
+  r.outcome = Outcome::Advanced;
+  r.publish = true;
+  return r;
+}
+
+VesselLockstep::Result VesselLockstep::reset() {
+  if (!started_) return {};
+  return start(last_t_, last_pose_, Outcome::Reinitialised, "reset");
+}
+
+}  // namespace core
+}  // namespace mooring_dynamics

@@ -1,0 +1,146 @@
+// cable_sim on a moored vessel (src/cli/cmd_vessel.cpp, cmd_system.cpp): the static wrench, the
+// stiffness and offset commands, and a dynamic run on a motion table whose series does not depend
+// on --threads. Runs the built binary (CABLE_SIM_EXE).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+#ifdef CABLE_SIM_EXE
+const char* const kExe = CABLE_SIM_EXE;
+#else
+const char* const kExe = nullptr;
+#endif
+
+std::string readText(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// Two chain lines fore and aft of a 40 m hull in 100 m of water, and a motion table: the vessel
+/// surges 1 m and yaws 2 deg over 4 s.
+const char* const kVessel = R"(
+name: two-line vessel
+model: 3d
+environment: {depth: 100}
+materials:
+  chain: {EA: 5.0e8, EI: 10, GJ: 1, mass: 40, added_mass: 5, wet_weight: 300, diameter: 0.08, cdn: 2.4, cdt: 1.15}
+vessel:
+  frame: hull
+  pose: {position: [0, 0, 0], yaw_deg: 0}
+  motion_table: motion.csv
+  lines:
+    - {name: fwd, fairlead: [20, 0, -5], anchor: [270, 0, -100], segments: [{material: chain, length: 300, spacing: 10}]}
+    - {name: aft, fairlead: [-20, 0, -5], anchor: [-270, 0, -100], segments: [{material: chain, length: 300, spacing: 10}]}
+dynamics: {dt: 0.25, lambda_inf: -0.5}
+)";
+
+struct RunResult {
+  int code = -1;
+  std::string out, err;
+};
+
+class CliVessel : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_NE(kExe, nullptr);
+    dir_ = fs::temp_directory_path() / ("md_test_cli_vessel_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "vessel.yaml") << kVessel;
+    std::ofstream m(dir_ / "motion.csv");
+    m << "t,x,y,z,qx,qy,qz,qw\n";
+    for (int k = 0; k <= 16; ++k) {
+      const double t = 0.25 * k, s = t / 4.0, yaw = 2.0 * 3.14159265358979323846 / 180.0 * s;
+      m << t << "," << s << ",0,0,0,0," << std::sin(yaw / 2) << "," << std::cos(yaw / 2) << "\n";
+    }
+  }
+  void TearDown() override {
+    std::error_code ec;
+    if (!HasFailure()) fs::remove_all(dir_, ec);
+  }
+  RunResult run(const std::vector<std::string>& args) {
+    std::string cmd = quote(kExe);
+    for (const auto& a : args) cmd += " " + quote(a);
+    cmd += " >" + quote((dir_ / "o.txt").string()) + " 2>" + quote((dir_ / "e.txt").string());
+    const int st = std::system(cmd.c_str());
+    return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, readText(dir_ / "o.txt"), readText(dir_ / "e.txt")};
+  }
+  std::string file() const { return (dir_ / "vessel.yaml").string(); }
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(CliVessel, StaticPrintsTheWrenchInBothFrames) {
+  const RunResult r = run({"static", file()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("vessel hull at (0.00, 0.00, 0.00) m"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("world frame  force"), std::string::npos);
+  EXPECT_NE(r.out.find("body frame   force"), std::string::npos);
+  EXPECT_NE(r.out.find("fwd/fairlead (vessel)"), std::string::npos);
+}
+
+TEST_F(CliVessel, StiffnessAndOffsetCommands) {
+  RunResult r = run({"stiffness", file(), "--out", (dir_ / "k").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("mooring stiffness"), std::string::npos);
+  const std::string csv = readText(dir_ / "k" / "stiffness.csv");
+  EXPECT_EQ(csv.rfind("row,surge,sway,heave,roll,pitch,yaw\nsurge,", 0), 0u) << csv;
+  r = run({"offset", file(), "--dof", "surge", "--range", "5", "--steps", "3"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("offset curve in surge"), std::string::npos);
+  // Bad values name the option.
+  r = run({"offset", file(), "--dof", "twist"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--dof"), std::string::npos) << r.err;
+  r = run({"offset", file(), "--dof", "yaw", "--range", "120"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--range"), std::string::npos) << r.err;
+  // A file without a vessel is refused with a clear message.
+  std::ofstream(dir_ / "line.yaml") << "materials: {w: {EA: 1e8, EI: 1, mass: 1, wet_weight: 10, diameter: 0.02, cdn: 1, cdt: 0.1}}\n"
+                                       "line: [{material: w, length: 100, spacing: 10}]\nanchor: {x: 0, z: -60}\n"
+                                       "top: {position: {x: 80, z: 0}}\n";
+  r = run({"stiffness", (dir_ / "line.yaml").string()});
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("vessel"), std::string::npos) << r.err;
+}
+
+TEST_F(CliVessel, DynamicRunFollowsTheTableWithTheSameBitsOnOneAndTwoThreads) {
+  RunResult r1 = run({"dynamic", file(), "--threads", "1", "--out", (dir_ / "t1").string(), "--no-progress"});
+  ASSERT_EQ(r1.code, 0) << r1.out << r1.err;
+  EXPECT_NE(r1.out.find("vessel dynamic run completed"), std::string::npos) << r1.out;
+  EXPECT_NE(r1.out.find("17 samples"), std::string::npos) << r1.out;
+  RunResult r2 = run({"dynamic", file(), "--threads", "2", "--out", (dir_ / "t2").string(), "--no-progress"});
+  ASSERT_EQ(r2.code, 0) << r2.err;
+  const std::string a = readText(dir_ / "t1" / "vessel_timeseries.csv"), b = readText(dir_ / "t2" / "vessel_timeseries.csv");
+  EXPECT_EQ(a.rfind("t,fx_body,fy_body,fz_body,mx_body,my_body,mz_body,fx_world", 0), 0u) << a.substr(0, 200);
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_EQ(a, b);
+  // A malformed table row is an error naming the row and column.
+  std::ofstream(dir_ / "motion.csv", std::ios::app) << "4.5,1,abc,0,0,0,0,1\n";
+  const RunResult bad = run({"dynamic", file(), "--no-progress"});
+  EXPECT_EQ(bad.code, 3);
+  EXPECT_NE(bad.err.find("column y = \"abc\""), std::string::npos) << bad.err;
+}

@@ -1,0 +1,96 @@
+// The vessel's lockstep driver: the sample policy (bad poses, stamps, start away from the file's
+// pose) and the same bits whatever the thread count.
+#include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "system_test_util.hpp"
+
+using namespace mooring_dynamics::core;
+using mooring_dynamics::core::testing_util::fourLegVessel;
+
+namespace {
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+DynamicOptions options() {
+  DynamicOptions o;
+  o.dt = 0.25;
+  o.duration = 1.0;
+  return o;
+}
+
+RigidPose surged(double x, double yaw_deg = 0.0) { return RigidPose::fromRollPitchYaw({x, 0, 0}, 0, 0, yaw_deg * kDegree); }
+}  // namespace
+
+TEST(VesselLockstep, BadPosesAndStampsAreDroppedAndTheStateKept) {
+  VesselLockstep run(fourLegVessel(10.0), options());
+  EXPECT_EQ(run.onSample(100.0, surged(0.0)).outcome, VesselLockstep::Outcome::Started);
+  EXPECT_EQ(run.onSample(100.5, surged(0.1)).outcome, VesselLockstep::Outcome::Advanced);
+  const VesselWrench before = run.wrench();
+  RigidPose nan_q = surged(0.2);
+  nan_q.orientation.x() = std::nan("");
+  RigidPose long_q = surged(0.2);
+  long_q.orientation.coeffs() *= 1.01;
+  RigidPose inf_p = surged(0.2);
+  inf_p.position.y() = INFINITY;
+  for (const RigidPose& bad : {nan_q, long_q, inf_p}) {
+    const auto r = run.onSample(101.0, bad);
+    EXPECT_EQ(r.outcome, VesselLockstep::Outcome::Dropped);
+    EXPECT_FALSE(r.publish);
+    EXPECT_NE(r.message.find("pose."), std::string::npos) << r.message;
+  }
+  EXPECT_EQ(run.onSample(100.5, surged(0.2)).outcome, VesselLockstep::Outcome::Dropped);  // duplicate stamp
+  EXPECT_EQ(run.onSample(100.2, surged(0.2)).outcome, VesselLockstep::Outcome::Dropped);  // back 0.3 s
+  EXPECT_EQ(run.dropped(), 5);
+  EXPECT_EQ(run.wrench().force_world, before.force_world);
+  EXPECT_EQ(run.lastTime(), 100.5);
+  // A quaternion off unit by less than the tolerance is taken (and normalized).
+  RigidPose near = surged(0.2);
+  near.orientation.coeffs() *= 1.0 + 0.5 * kUnitQuaternionTolerance;
+  EXPECT_EQ(run.onSample(101.0, near).outcome, VesselLockstep::Outcome::Advanced);
+  // A bag loop (back by more than loop_back) restarts from statics there.
+  EXPECT_EQ(run.onSample(50.0, surged(0.0)).outcome, VesselLockstep::Outcome::Reinitialised);
+  EXPECT_EQ(run.solverTime(), 0.0);
+}
+
+TEST(VesselLockstep, FirstSampleAwayFromTheFilePoseStartsFromItsOwnStatics) {
+  const SystemProblem s = fourLegVessel(10.0);
+  VesselLockstep run(s, options());
+  const RigidPose away = surged(5.0, 3.0);
+  ASSERT_EQ(run.onSample(0.0, away).outcome, VesselLockstep::Outcome::Started);
+  const VesselStaticResult st = solveVesselStatic(s, away);
+  // [N] both are the statics at that pose, solved the same way.
+  const double tol = 1e-6 * std::abs(st.wrench.force_world.z());
+  EXPECT_NEAR((run.wrench().force_world - st.wrench.force_world).norm(), 0.0, tol);
+  EXPECT_NEAR((run.wrench().moment_world - st.wrench.moment_world).norm(), 0.0, 30.0 * tol);
+  EXPECT_LT(run.wrench().force_body.x(), 0.0);  // surged: pulled back
+}
+
+TEST(VesselLockstep, SameBitsOnOneAndTwoThreads) {
+  std::vector<Eigen::Vector3d> series[2];
+  for (int k = 0; k < 2; ++k) {
+    VesselLockstepOptions lo;
+    lo.threads = k + 1;
+    VesselLockstep run(fourLegVessel(10.0), options(), lo);
+    for (int i = 0; i <= 20; ++i) {
+      const double t = 0.2 * i;
+      run.onSample(t, surged(0.5 * std::sin(0.6 * t), 2.0 * std::sin(0.3 * t)));
+      series[k].push_back(run.wrench().force_world);
+      series[k].push_back(run.wrench().moment_world);
+    }
+  }
+  ASSERT_EQ(series[0].size(), series[1].size());
+  for (std::size_t i = 0; i < series[0].size(); ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(series[0][i][c], series[1][i][c]) << i;
+}
+
+TEST(VesselLockstep, OptionsNameTheField) {
+  VesselLockstepOptions lo;
+  lo.threads = 0;
+  EXPECT_NE(lo.validate().find("threads"), std::string::npos);
+  lo = VesselLockstepOptions();
+  lo.loop_back = -1;
+  EXPECT_NE(lo.validate().find("loop_back"), std::string::npos);
+}
