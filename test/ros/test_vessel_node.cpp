@@ -5,7 +5,9 @@
 //   * equal, printed to 12 significant digits, to `cable_sim dynamic` on a motion table with the
 //     same rows (its vessel_timeseries.csv),
 // live (test_vessel_node.test) and from a bag replayed with --clock under use_sim_time
-// (test_vessel_node.replay.test). Live only: bad samples (NaN quaternion, non-unit quaternion,
+// (test_vessel_node.replay.test), and live from nav_msgs/Odometry (test_vessel_node.odom.test, its
+// twist set to nonsense: unused) and from tf (test_vessel_node.tf.test, one transform at a time,
+// each waiting for its wrench as a simulator in lockstep would). Live PoseStamped only: bad samples (NaN quaternion, non-unit quaternion,
 // a stamp going back) are dropped, counted in /diagnostics, and the wrench stays finite. Both:
 // ~solve_static (VesselStatics) returns the core's static wrench bit for bit and a stiffness
 // matrix positive in surge, sway and yaw.
@@ -28,8 +30,10 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/WrenchStamped.h>
+#include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
+#include <tf2_ros/transform_broadcaster.h>
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/VesselStatics.h"
@@ -50,6 +54,7 @@ const ros::Time kStart(3000.0);   // first stamp (sim time in the bag)
 constexpr double kPi = 3.14159265358979323846;
 
 std::string g_mode = "live", g_node = "/vessel";
+std::string g_source = "pose";  // live: pose (PoseStamped), odometry (Odometry) or tf (world -> base_link)
 const std::string kProblem = std::string(MD_SOURCE_DIR) + "/test/data/small_vessel.yaml";
 
 struct Sample {
@@ -211,7 +216,41 @@ TEST(VesselNode, WrenchSeriesMatchesCoreAndCli) {
   const std::vector<Sample> tr = track();
   Listener& l = *g_listener;
   ros::NodeHandle nh;
-  if (g_mode == "live") {
+  if (g_mode == "live" && g_source == "tf") {
+    // Lockstep by hand, as a simulator would: broadcast the vessel frame, wait for its wrench.
+    ASSERT_TRUE(connect(nullptr)) << "no connection to " << g_node;
+    tf2_ros::TransformBroadcaster br;
+    ros::WallDuration(0.5).sleep();
+    for (const Sample& s : tr) {
+      geometry_msgs::TransformStamped t;
+      t.header.stamp = s.stamp;
+      t.header.frame_id = "world";
+      t.child_frame_id = "base_link";
+      t.transform.translation.x = s.pose.position.x;
+      t.transform.translation.y = s.pose.position.y;
+      t.transform.translation.z = s.pose.position.z;
+      t.transform.rotation = s.pose.orientation;
+      // Sent again until answered: the first ones may go out before tf's connection is up.
+      for (int k = 0; k < 40 && !l.has(s.stamp); ++k) {
+        br.sendTransform(t);
+        l.spinUntil([&] { return l.has(s.stamp); }, 0.5);
+      }
+    }
+  } else if (g_mode == "live" && g_source == "odometry") {
+    ros::Publisher pub = nh.advertise<nav_msgs::Odometry>(g_node + "/vessel_odom", 100);
+    ASSERT_TRUE(connect(&pub)) << "no connection to " << g_node;
+    for (const Sample& s : tr) {
+      nav_msgs::Odometry m;
+      m.header.stamp = s.stamp;
+      m.header.frame_id = "world";
+      m.child_frame_id = "base_link";
+      m.pose.pose = s.pose;
+      m.twist.twist.linear.x = 1e3;  // not used: the velocities come from the poses
+      pub.publish(m);
+      ros::WallDuration(0.02).sleep();
+      ros::spinOnce();
+    }
+  } else if (g_mode == "live") {
     ros::Publisher pub = nh.advertise<geometry_msgs::PoseStamped>(g_node + "/vessel_pose", 100);
     ASSERT_TRUE(connect(&pub)) << "no connection to " << g_node;
     for (const Sample& s : tr) {
@@ -254,7 +293,7 @@ TEST(VesselNode, WrenchSeriesMatchesCoreAndCli) {
 }
 
 TEST(VesselNode, BadSamplesAreCountedAndTheWrenchStaysFinite) {
-  if (g_mode != "live") GTEST_SKIP() << "live only";
+  if (g_mode != "live" || g_source != "pose") GTEST_SKIP() << "live PoseStamped only";
   Listener& l = *g_listener;
   ros::NodeHandle nh;
   ros::Publisher pub = nh.advertise<geometry_msgs::PoseStamped>(g_node + "/vessel_pose", 100);
@@ -359,6 +398,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle pnh("~");
   pnh.param<std::string>("mode", g_mode, g_mode);
   pnh.param<std::string>("node", g_node, g_node);
+  pnh.param<std::string>("source", g_source, g_source);
   Listener l;
   g_listener = &l;
   return RUN_ALL_TESTS();
