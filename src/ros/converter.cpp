@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <sstream>
 
 namespace mooring_dynamics {
 namespace ros_bridge {
@@ -172,6 +173,197 @@ TopBoundaryRequest topBoundaryFromRequest(const SolveStatic::Request& req, const
   out.ok = true;
   out.summary = describeTop(out.top, model);
   return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Moored vessel
+
+namespace {
+
+geometry_msgs::Vector3 vec3(const Eigen::Vector3d& v) {
+  geometry_msgs::Vector3 m;
+  m.x = v.x();
+  m.y = v.y();
+  m.z = v.z();
+  return m;
+}
+
+geometry_msgs::WrenchStamped wrenchStamped(const Eigen::Vector3d& f, const Eigen::Vector3d& m, const std::string& frame,
+                                           const ros::Time& stamp) {
+  geometry_msgs::WrenchStamped w;
+  w.header.stamp = stamp;
+  w.header.frame_id = frame;
+  w.wrench.force = vec3(f);
+  w.wrench.torque = vec3(m);
+  return w;
+}
+
+geometry_msgs::Wrench wrench(const Eigen::Vector3d& f, const Eigen::Vector3d& m) {
+  geometry_msgs::Wrench w;
+  w.force = vec3(f);
+  w.torque = vec3(m);
+  return w;
+}
+
+}  // namespace
+
+core::RigidPose toRigidPose(const geometry_msgs::Pose& pose) {
+  core::RigidPose p;
+  p.position = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  p.orientation = Eigen::Quaterniond(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
+  return p;
+}
+
+geometry_msgs::Pose toPoseMsg(const core::RigidPose& pose) {
+  geometry_msgs::Pose m;
+  m.position.x = pose.position.x();
+  m.position.y = pose.position.y();
+  m.position.z = pose.position.z();
+  m.orientation.x = pose.orientation.x();
+  m.orientation.y = pose.orientation.y();
+  m.orientation.z = pose.orientation.z();
+  m.orientation.w = pose.orientation.w();
+  return m;
+}
+
+geometry_msgs::WrenchStamped toBodyWrench(const core::VesselWrench& w, const std::string& body_frame,
+                                          const ros::Time& stamp) {
+  return wrenchStamped(w.force_body, w.moment_body, body_frame, stamp);
+}
+
+geometry_msgs::WrenchStamped toWorldWrench(const core::VesselWrench& w, const std::string& world_frame,
+                                           const ros::Time& stamp) {
+  return wrenchStamped(w.force_world, w.moment_world, world_frame, stamp);
+}
+
+geometry_msgs::WrenchStamped toFairleadWrench(const core::FairleadForce& f, const core::RigidPose& vessel,
+                                              const std::string& world_frame, const ros::Time& stamp) {
+  const Eigen::Vector3d arm = f.position - vessel.position;
+  return wrenchStamped(f.force, arm.cross(f.force), world_frame, stamp);
+}
+
+geometry_msgs::TransformStamped fairleadTransform(const core::FairleadForce& f, const core::RigidPose& vessel,
+                                                  const std::string& world_frame, const std::string& child,
+                                                  const ros::Time& stamp) {
+  core::RigidPose at = vessel;
+  at.position = f.position;
+  return vesselTransform(at, world_frame, child, stamp);
+}
+
+geometry_msgs::TransformStamped vesselTransform(const core::RigidPose& pose, const std::string& world_frame,
+                                                const std::string& body_frame, const ros::Time& stamp) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = world_frame;
+  t.child_frame_id = body_frame;
+  const geometry_msgs::Pose p = toPoseMsg(pose);
+  t.transform.translation.x = p.position.x;
+  t.transform.translation.y = p.position.y;
+  t.transform.translation.z = p.position.z;
+  t.transform.rotation = p.orientation;
+  return t;
+}
+
+VesselStaticsRequest vesselStaticsFromRequest(const VesselStatics::Request& req, const core::RigidPose& file_pose) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  VesselStaticsRequest out;
+  if (req.use_file_pose) {
+    out.pose = file_pose;
+  } else {
+    out.pose = toRigidPose(req.pose);
+    const std::string bad = out.pose.validate("pose");
+    if (!bad.empty()) {
+      out.error = bad;
+      return out;
+    }
+    out.pose.orientation.normalize();
+  }
+  out.want_stiffness = req.want_stiffness;
+  if (!req.offset_dof.empty()) {
+    if (!core::parseVesselDof(req.offset_dof, out.dof)) {
+      out.error = "offset_dof = \"" + req.offset_dof + "\": must be empty (no offset curve) or one of surge, sway, "
+                  "heave, roll, pitch, yaw";
+      return out;
+    }
+    out.has_offset = true;
+    out.angular = static_cast<int>(out.dof) >= 3;
+    const double range = req.offset_range;
+    if (!(std::isfinite(range) && range > 0.0)) {
+      out.error = "offset_range = " + formatNumber(range) + ": must be > 0 and finite (" +
+                  (out.angular ? "deg" : "m") + ")";
+      return out;
+    }
+    if (out.angular && range >= 90.0) {
+      out.error = "offset_range = " + formatNumber(range) + " deg: must be < 90 for " + req.offset_dof;
+      return out;
+    }
+    if (req.offset_steps < 2 || req.offset_steps > kMaxOffsetSteps) {
+      out.error = "offset_steps = " + std::to_string(req.offset_steps) + ": must be in [2, " +
+                  std::to_string(kMaxOffsetSteps) + "] when offset_dof is given";
+      return out;
+    }
+    const std::size_t n = req.offset_steps;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double a = -range + 2.0 * range * static_cast<double>(k) / static_cast<double>(n - 1);
+      out.offsets.push_back(out.angular ? a * kDeg : a);
+    }
+  }
+  const Eigen::Quaterniond& q = out.pose.orientation;
+  const double yaw = std::atan2(2.0 * (q.w() * q.z() + q.x() * q.y()), 1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()));
+  std::ostringstream os;
+  os << (req.use_file_pose ? "file pose" : "pose") << " (x, y, z) = (" << formatNumber(out.pose.position.x()) << ", "
+     << formatNumber(out.pose.position.y()) << ", " << formatNumber(out.pose.position.z()) << ") m, yaw "
+     << formatNumber(yaw / kDeg) << " deg";
+  out.summary = os.str();
+  out.ok = true;
+  return out;
+}
+
+void toVesselStaticsResponse(const core::SystemProblem& system, const core::VesselStaticResult& at,
+                             const core::StiffnessResult* stiffness, const std::vector<core::OffsetPoint>* curve,
+                             const VesselStaticsRequest& request, VesselStatics::Response& res) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  res = VesselStatics::Response();
+  const core::VesselWrench& w = at.wrench;
+  res.wrench_body = wrench(w.force_body, w.moment_body);
+  res.wrench_world = wrench(w.force_world, w.moment_world);
+  for (std::size_t i = 0; i < system.lines.size(); ++i) {
+    res.line_names.push_back(system.lines[i].name);
+    res.top_tension.push_back(i < at.system.lines.size() ? at.system.lines[i].topTension() : 0.0);
+  }
+  std::vector<std::string> failed;
+  if (!at.system.summary.converged) failed.push_back("statics at the pose: " + at.system.summary.message);
+  if (stiffness) {
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) res.stiffness[static_cast<std::size_t>(6 * i + j)] = stiffness->K(i, j);
+    if (!stiffness->converged) failed.push_back("stiffness: " + stiffness->message);
+  }
+  if (curve) {
+    const int c = static_cast<int>(request.dof);
+    for (const core::OffsetPoint& p : *curve) {
+      res.offsets.push_back(request.angular ? p.offset / kDeg : p.offset);
+      res.restoring.push_back(p.wrench[c]);
+      res.max_tension.push_back(p.max_tension);
+      res.max_tension_line.push_back(p.max_tension_line);
+      if (!p.converged)
+        failed.push_back("offset " + formatNumber(request.angular ? p.offset / kDeg : p.offset) +
+                         (request.angular ? " deg: " : " m: ") + p.message);
+    }
+  }
+  res.success = failed.empty();
+  std::ostringstream os;
+  os << request.summary << ": ";
+  if (res.success) {
+    os << "converged; force (body) (" << formatNumber(w.force_body.x()) << ", " << formatNumber(w.force_body.y()) << ", "
+       << formatNumber(w.force_body.z()) << ") N, moment (" << formatNumber(w.moment_body.x()) << ", "
+       << formatNumber(w.moment_body.y()) << ", " << formatNumber(w.moment_body.z()) << ") N m";
+    if (stiffness) os << "; stiffness computed";
+    if (curve) os << "; offset curve of " << curve->size() << " points";
+  } else {
+    os << "NOT converged: ";
+    for (std::size_t k = 0; k < failed.size(); ++k) os << (k ? "; " : "") << failed[k];
+  }
+  res.message = os.str();
 }
 
 }  // namespace ros_bridge

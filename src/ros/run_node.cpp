@@ -8,6 +8,7 @@
 #include "mooring_dynamics/ros/lockstep_node.hpp"
 #include "mooring_dynamics/ros/static_node.hpp"
 #include "mooring_dynamics/ros/system_node.hpp"
+#include "mooring_dynamics/ros/vessel_node.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {
@@ -18,16 +19,20 @@ int runNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
   std::unique_ptr<StaticNode> static_node;
   std::unique_ptr<LockstepNode> lockstep_node;
   std::unique_ptr<SystemStaticNode> system_node;
+  std::unique_ptr<VesselNode> vessel_node;
   try {
-    if (paramsNameSystemFile(pnh)) {  // several lines joined at points: statics only
-      if (mode != "static") {
-        ROS_FATAL("mooring_dynamics: parameter %s = \"%s\": a system of lines (points and lines) runs in "
-                  "static mode only so far",
+    if (paramsNameSystemFile(pnh)) {  // several lines joined at points (a moored vessel among them)
+      if (mode == "dynamic" && paramsNameVesselFile(pnh)) {
+        vessel_node = std::make_unique<VesselNode>(nh, pnh);
+      } else if (mode != "static") {
+        ROS_FATAL("mooring_dynamics: parameter %s = \"%s\": a system of lines without a moored vessel (a `vessel:` "
+                  "section with lines on it) runs in static mode only so far",
                   pnh.resolveName("mode").c_str(), mode.c_str());
         ros::shutdown();
         return 1;
+      } else {
+        system_node = std::make_unique<SystemStaticNode>(nh, pnh);
       }
-      system_node = std::make_unique<SystemStaticNode>(nh, pnh);
     } else if (mode == "static") {
       static_node = std::make_unique<StaticNode>(nh, pnh);
     } else if (mode == "dynamic") {

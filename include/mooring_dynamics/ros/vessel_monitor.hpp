@@ -1,0 +1,86 @@
+// Health of the moored-vessel lockstep mode (VesselNode), summarised for diagnostic_msgs. ROS-free:
+// the node feeds it wall-clock seconds and core::VesselLockstep results, and turns the summary into
+// DiagnosticStatus messages (one overall, one per line).
+//
+// One summary per diagnostics period ("window"). Levels (docs/ros_interface.md, "Moored vessel"):
+//   overall  ERROR  a line failed in the window (VesselLockstep restarted every line from statics
+//                   at that sample's pose; the line is named)
+//            WARN   no motion for more than motion_timeout; samples dropped (bad pose, NaN or
+//                   non-unit quaternion, stamp not increasing, jump, no transform); restarted
+//                   (bag loop, gap, reset); real-time factor below min_real_time_factor
+//            OK     otherwise
+//   per line ERROR  this line failed in the window (named in VesselLockstep's message as
+//                   "line <name>:"), else OK; values: top tension, converged, failures.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
+
+namespace mooring_dynamics {
+namespace ros_bridge {
+
+struct VesselMonitorOptions {
+  double motion_timeout = 1.0;        ///< [s, wall] no motion for longer than this: WARN
+  double min_real_time_factor = 1.0;  ///< window real-time factor below this: WARN
+};
+
+class VesselMonitor {
+ public:
+  enum Level { OK = 0, WARN = 1, ERROR = 2 };  // values of diagnostic_msgs::DiagnosticStatus levels
+  struct Status {
+    Level level = OK;
+    std::string line;     ///< "" for the overall status, else the line's name
+    std::string message;
+    std::vector<std::pair<std::string, std::string>> values;  ///< key (with unit), value
+  };
+
+  VesselMonitor(std::vector<std::string> line_names, const VesselMonitorOptions& options = {}, double wall_now = 0.0);
+
+  /// A pose message arrived at wall time `wall_now` (before any check).
+  void onMotionReceived(double wall_now);
+  /// A sample rejected by the node before VesselLockstep (zero stamp, no transform to ~frame_id).
+  void onInputRejected(double wall_now, const std::string& message);
+  /// A VesselLockstep result. `wall_spent` [s] the wall time of the call, `advanced` [s] the solver
+  /// time it covered (Advanced), `top_tension` the lines' top tensions [N] when r.publish, and
+  /// `solver_time` [s] the solver's time after the call.
+  void onResult(const core::VesselLockstep::Result& r, double wall_now, double wall_spent, double advanced,
+                const std::vector<double>* top_tension, double solver_time);
+
+  /// Overall status then one per line, for the window since the last call; starts a new window.
+  std::vector<Status> summarise(double wall_now);
+
+  /// Samples dropped or rejected so far (VesselLockstep's and the node's), failures so far.
+  long droppedTotal() const { return total_.dropped + window_.dropped; }
+  long failuresTotal() const { return total_.failures + window_.failures; }
+  /// Index of the line a failure message names ("line <name>:"), or -1.
+  int failedLine(const std::string& message) const;
+  const std::string& lastEvent() const { return last_event_; }
+  double secondsSinceMotion(double wall_now) const { return wall_now - last_motion_wall_; }
+  bool silent(double wall_now) const { return secondsSinceMotion(wall_now) > options_.motion_timeout; }
+  bool everReceived() const { return ever_received_; }
+
+ private:
+  struct Counts {
+    long samples = 0, published = 0, dropped = 0, restarts = 0, failures = 0;
+    double sim = 0.0, wall = 0.0;  ///< solver time advanced, wall time spent [s]
+  };
+  static void add(Counts& a, const Counts& b);
+
+  std::vector<std::string> names_;
+  VesselMonitorOptions options_;
+  Counts window_, total_;
+  std::vector<long> line_failures_window_, line_failures_total_;
+  std::vector<std::string> line_last_failure_;
+  std::vector<double> top_tension_, max_top_tension_;
+  bool have_state_ = false;
+  double last_motion_wall_ = 0.0;
+  bool ever_received_ = false;
+  std::string last_event_, last_drop_, last_restart_, last_failure_;
+  double solver_time_ = 0.0;
+};
+
+}  // namespace ros_bridge
+}  // namespace mooring_dynamics

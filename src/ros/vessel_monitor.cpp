@@ -1,0 +1,169 @@
+#include "mooring_dynamics/ros/vessel_monitor.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace mooring_dynamics {
+namespace ros_bridge {
+
+namespace {
+
+std::string fmt(double v, const char* f = "%.4g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+VesselMonitor::VesselMonitor(std::vector<std::string> line_names, const VesselMonitorOptions& options, double wall_now)
+    : names_(std::move(line_names)),
+      options_(options),
+      line_failures_window_(names_.size(), 0),
+      line_failures_total_(names_.size(), 0),
+      line_last_failure_(names_.size()),
+      top_tension_(names_.size(), 0.0),
+      max_top_tension_(names_.size(), 0.0),
+      last_motion_wall_(wall_now) {}
+
+void VesselMonitor::add(Counts& a, const Counts& b) {
+  a.samples += b.samples;
+  a.published += b.published;
+  a.dropped += b.dropped;
+  a.restarts += b.restarts;
+  a.failures += b.failures;
+  a.sim += b.sim;
+  a.wall += b.wall;
+}
+
+int VesselMonitor::failedLine(const std::string& message) const {
+  // SystemDynamics names the first failed line (in line order) as "line <name>: ...". The longest
+  // matching name wins, so that "a" does not match a message about "a_2".
+  int best = -1;
+  std::size_t best_len = 0;
+  for (std::size_t i = 0; i < names_.size(); ++i) {
+    const std::string key = "line " + names_[i] + ":";
+    if (message.find(key) != std::string::npos && key.size() > best_len) {
+      best = static_cast<int>(i);
+      best_len = key.size();
+    }
+  }
+  return best;
+}
+
+void VesselMonitor::onMotionReceived(double wall_now) {
+  last_motion_wall_ = wall_now;
+  ever_received_ = true;
+  ++window_.samples;
+}
+
+void VesselMonitor::onInputRejected(double, const std::string& message) {
+  ++window_.dropped;
+  last_drop_ = message;
+  last_event_ = "dropped: " + message;
+}
+
+void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, double wall_spent, double advanced,
+                             const std::vector<double>* top_tension, double solver_time) {
+  using O = core::VesselLockstep::Outcome;
+  solver_time_ = solver_time;
+  window_.wall += wall_spent;
+  switch (r.outcome) {
+    case O::Dropped:
+      ++window_.dropped;
+      last_drop_ = r.message;
+      last_event_ = "dropped: " + r.message;
+      break;
+    case O::Advanced: window_.sim += advanced; break;
+    case O::Started: last_event_ = "started" + (r.message.empty() ? std::string() : ": " + r.message); break;
+    case O::Reinitialised:
+      ++window_.restarts;
+      last_restart_ = r.message;
+      last_event_ = "restarted from statics: " + r.message;
+      break;
+    case O::RecoveredFailure: {
+      ++window_.failures;
+      last_failure_ = r.message;
+      const int i = failedLine(r.message);
+      last_event_ = (i >= 0 ? "line " + names_[static_cast<std::size_t>(i)] + " failed; " : std::string()) +
+                    "every line restarted from statics at the sample's pose: " + r.message;
+      if (i >= 0) {
+        ++line_failures_window_[static_cast<std::size_t>(i)];
+        ++line_failures_total_[static_cast<std::size_t>(i)];
+        line_last_failure_[static_cast<std::size_t>(i)] = r.message;
+      }
+      break;
+    }
+  }
+  if (r.publish) {
+    ++window_.published;
+    if (top_tension && top_tension->size() == names_.size()) {
+      top_tension_ = *top_tension;
+      for (std::size_t i = 0; i < names_.size(); ++i) max_top_tension_[i] = std::max(max_top_tension_[i], top_tension_[i]);
+      have_state_ = true;
+    }
+  }
+}
+
+std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
+  const Counts w = window_;
+  add(total_, w);
+  window_ = Counts();
+  std::vector<Status> out;
+
+  Status s;
+  std::vector<std::string> errors, warnings;
+  if (w.failures > 0) errors.push_back(std::to_string(w.failures) + " line failure(s), restarted from statics: " + last_failure_);
+  const double quiet = wall_now - last_motion_wall_;
+  if (quiet > options_.motion_timeout)
+    warnings.push_back(ever_received_ ? "no motion for " + fmt(quiet, "%.1f") + " s (last good state kept)"
+                                      : "waiting for motion (none received yet)");
+  if (w.dropped > 0) warnings.push_back(std::to_string(w.dropped) + " sample(s) dropped: " + last_drop_);
+  if (w.restarts > 0) warnings.push_back(std::to_string(w.restarts) + " restart(s): " + last_restart_);
+  const double rtf = w.wall > 0.0 ? w.sim / w.wall : 0.0;
+  if (w.sim > 0.0 && rtf < options_.min_real_time_factor)
+    warnings.push_back("real-time factor " + fmt(rtf, "%.2f") + " < " + fmt(options_.min_real_time_factor, "%g"));
+  std::string msg;
+  for (const auto* v : {&errors, &warnings})
+    for (const auto& x : *v) msg += (msg.empty() ? "" : "; ") + x;
+  s.level = !errors.empty() ? ERROR : !warnings.empty() ? WARN : OK;
+  if (s.level == OK) msg = w.sim > 0.0 ? "running, real-time factor " + fmt(rtf, "%.1f") : "running";
+  s.message = msg;
+  const double total_rtf = total_.wall > 0.0 ? total_.sim / total_.wall : 0.0;
+  auto kv = [](Status& st, const std::string& k, const std::string& v) { st.values.emplace_back(k, v); };
+  kv(s, "real-time factor (window)", w.sim > 0.0 ? fmt(rtf) : "-");
+  kv(s, "real-time factor (total)", total_.sim > 0.0 ? fmt(total_rtf) : "-");
+  kv(s, "solver wall time (window) [s]", fmt(w.wall));
+  kv(s, "simulated time advanced (window) [s]", fmt(w.sim));
+  kv(s, "solver time [s]", fmt(solver_time_));
+  kv(s, "motion samples (window / total)", std::to_string(w.samples) + " / " + std::to_string(total_.samples));
+  kv(s, "states published (window / total)", std::to_string(w.published) + " / " + std::to_string(total_.published));
+  kv(s, "samples dropped (window / total)", std::to_string(w.dropped) + " / " + std::to_string(total_.dropped));
+  kv(s, "samples dropped", std::to_string(total_.dropped));
+  kv(s, "restarts (window / total)", std::to_string(w.restarts) + " / " + std::to_string(total_.restarts));
+  kv(s, "line failures (window / total)", std::to_string(w.failures) + " / " + std::to_string(total_.failures));
+  kv(s, "seconds since last motion [s]", ever_received_ ? fmt(quiet, "%.3g") : "-");
+  kv(s, "last event", last_event_.empty() ? "none" : last_event_);
+  out.push_back(s);
+
+  for (std::size_t i = 0; i < names_.size(); ++i) {
+    Status l;
+    l.line = names_[i];
+    const bool failed = line_failures_window_[i] > 0;
+    l.level = failed ? ERROR : OK;
+    l.message = failed ? "failed (" + line_last_failure_[i] + "); every line restarted from statics at the sample's pose"
+                       : have_state_ ? "top tension " + fmt(top_tension_[i], "%.1f") + " N" : "waiting for motion";
+    kv(l, "top tension [N]", have_state_ ? fmt(top_tension_[i], "%.6g") : "-");
+    kv(l, "max top tension [N]", have_state_ ? fmt(max_top_tension_[i], "%.6g") : "-");
+    kv(l, "converged", failed ? "false" : "true");
+    kv(l, "failures (window / total)",
+       std::to_string(line_failures_window_[i]) + " / " + std::to_string(line_failures_total_[i]));
+    kv(l, "last failure", line_last_failure_[i].empty() ? "none" : line_last_failure_[i]);
+    line_failures_window_[i] = 0;
+    out.push_back(l);
+  }
+  return out;
+}
+
+}  // namespace ros_bridge
+}  // namespace mooring_dynamics

@@ -1,0 +1,405 @@
+// rostest: the moored-vessel lockstep node (VesselNode, ~mode dynamic on test/data/small_vessel.yaml,
+// three lines). A track of 40 vessel poses (surge and yaw) gives a ~wrench series that is
+//   * bit-identical to core::VesselLockstep run here on the same samples (one thread; the node
+//     runs ~threads 2: the bits do not depend on the thread count),
+//   * equal, printed to 12 significant digits, to `cable_sim dynamic` on a motion table with the
+//     same rows (its vessel_timeseries.csv),
+// live (test_vessel_node.test) and from a bag replayed with --clock under use_sim_time
+// (test_vessel_node.replay.test), and live from nav_msgs/Odometry (test_vessel_node.odom.test, its
+// twist set to nonsense: unused) and from tf (test_vessel_node.tf.test, one transform at a time,
+// each waiting for its wrench as a simulator in lockstep would). Live PoseStamped only: bad samples (NaN quaternion, non-unit quaternion,
+// a stamp going back) are dropped, counted in /diagnostics, and the wrench stays finite. Both:
+// ~solve_static (VesselStatics) returns the core's static wrench bit for bit and a stiffness
+// matrix positive in surge, sway and yaw.
+#include <gtest/gtest.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include "mooring_dynamics/CableState.h"
+#include "mooring_dynamics/VesselStatics.h"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
+#include "mooring_dynamics/core/solvers/vessel_statics.hpp"
+#include "mooring_dynamics/ros/converter.hpp"
+
+namespace core = mooring_dynamics::core;
+namespace fs = std::filesystem;
+using mooring_dynamics::VesselStatics;
+
+namespace {
+
+constexpr int kSamples = 40;      // 4 s at 10 Hz
+constexpr double kDt = 0.1;       // [s] sample spacing = the file's dt
+const ros::Time kStart(3000.0);   // first stamp (sim time in the bag)
+constexpr double kPi = 3.14159265358979323846;
+
+std::string g_mode = "live", g_node = "/vessel";
+std::string g_source = "pose";  // live: pose (PoseStamped), odometry (Odometry) or tf (world -> base_link)
+const std::string kProblem = std::string(MD_SOURCE_DIR) + "/test/data/small_vessel.yaml";
+
+struct Sample {
+  ros::Time stamp;
+  geometry_msgs::Pose pose;
+};
+
+/// Surge 0.5 m (period 4 s) and yaw 2 deg (period 5 s), from the file's pose (0, 0, 0, yaw 0).
+std::vector<Sample> track() {
+  std::vector<Sample> v;
+  for (int k = 0; k < kSamples; ++k) {
+    const double t = kDt * k;
+    const double yaw = 2.0 * kPi / 180.0 * std::sin(2 * kPi * t / 5.0);
+    Sample s;
+    s.stamp = kStart + ros::Duration(t);
+    s.pose.position.x = 0.5 * std::sin(2 * kPi * t / 4.0);
+    s.pose.orientation.z = std::sin(0.5 * yaw);
+    s.pose.orientation.w = std::cos(0.5 * yaw);
+    v.push_back(s);
+  }
+  return v;
+}
+
+geometry_msgs::PoseStamped toMsg(const Sample& s) {
+  geometry_msgs::PoseStamped m;
+  m.header.stamp = s.stamp;
+  m.header.frame_id = "world";
+  m.pose = s.pose;
+  return m;
+}
+
+/// The 12 numbers of a wrench row: body force, body moment, world force, world moment.
+using Row = std::vector<double>;
+Row rowOf(const geometry_msgs::WrenchStamped& b, const geometry_msgs::WrenchStamped& w) {
+  return {b.wrench.force.x,  b.wrench.force.y,  b.wrench.force.z,  b.wrench.torque.x, b.wrench.torque.y, b.wrench.torque.z,
+          w.wrench.force.x,  w.wrench.force.y,  w.wrench.force.z,  w.wrench.torque.x, w.wrench.torque.y, w.wrench.torque.z};
+}
+
+/// core::VesselLockstep on the same samples, as the node feeds them (time = stamp - first stamp).
+std::vector<Row> coreSeries(const std::vector<Sample>& tr) {
+  core::SystemProblem s = core::loadSystemFromFile(kProblem);
+  core::DynamicOptions dyn = s.dynamics;
+  dyn.threads = 1;
+  core::VesselLockstepOptions lo;
+  lo.threads = 1;
+  core::VesselLockstep run(s, dyn, lo);
+  std::vector<Row> out;
+  for (const Sample& x : tr) {
+    const core::VesselLockstep::Result r =
+        run.onSample((x.stamp - tr[0].stamp).toSec(), mooring_dynamics::ros_bridge::toRigidPose(x.pose));
+    EXPECT_TRUE(r.publish) << r.message;
+    const core::VesselWrench w = run.wrench();
+    Row row;
+    for (const Eigen::Vector3d* v : {&w.force_body, &w.moment_body, &w.force_world, &w.moment_world})
+      for (int i = 0; i < 3; ++i) row.push_back((*v)[i]);
+    out.push_back(row);
+  }
+  return out;
+}
+
+/// printf's %.12g as cable_sim's CSV writes it.
+std::string csv12(double v) {
+  char buf[40];
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 12);
+  return std::string(buf, r.ptr);
+}
+
+std::string exact(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+/// `cable_sim dynamic` on a copy of the problem whose vessel.motion_table holds the samples
+/// (times as the node computes them, numbers printed exactly); the CSV rows' wrench columns.
+std::vector<std::vector<std::string>> cliSeries(const std::vector<Sample>& tr) {
+  const fs::path dir = fs::temp_directory_path() / ("md_vessel_cli_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    std::ofstream t(dir / "motion.csv");
+    t << "t,x,y,z,qx,qy,qz,qw\n";
+    for (const Sample& s : tr) {
+      const auto& p = s.pose;
+      t << exact((s.stamp - tr[0].stamp).toSec()) << "," << exact(p.position.x) << "," << exact(p.position.y) << ","
+        << exact(p.position.z) << "," << exact(p.orientation.x) << "," << exact(p.orientation.y) << ","
+        << exact(p.orientation.z) << "," << exact(p.orientation.w) << "\n";
+    }
+    std::ifstream in(kProblem);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string yaml = ss.str();
+    const std::string key = "  frame: base_link\n";
+    const std::size_t at = yaml.find(key);
+    EXPECT_NE(at, std::string::npos);
+    yaml.insert(at + key.size(), "  motion_table: motion.csv\n");
+    std::ofstream(dir / "vessel.yaml") << yaml;
+  }
+  const std::string cmd = std::string(CABLE_SIM_EXE) + " dynamic " + (dir / "vessel.yaml").string() + " --threads 1 --out " +
+                          (dir / "out").string() + " --no-progress >" + (dir / "log.txt").string() + " 2>&1";
+  const int rc = std::system(cmd.c_str());
+  EXPECT_EQ(rc, 0) << cmd;
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream f(dir / "out" / "vessel_timeseries.csv");
+  std::string line;
+  std::getline(f, line);  // header
+  while (std::getline(f, line)) {
+    std::vector<std::string> cols;
+    std::stringstream ls(line);
+    std::string c;
+    while (std::getline(ls, c, ',')) cols.push_back(c);
+    rows.push_back(cols);
+  }
+  fs::remove_all(dir);
+  return rows;
+}
+
+/// The node's outputs by stamp.
+struct Listener {
+  std::map<uint64_t, geometry_msgs::WrenchStamped> body, world;
+  ros::Subscriber s1, s2;
+  Listener() {
+    ros::NodeHandle nh;
+    s1 = nh.subscribe<geometry_msgs::WrenchStamped>(g_node + "/wrench", 1000, [this](const geometry_msgs::WrenchStamped::ConstPtr& m) {
+      body[m->header.stamp.toNSec()] = *m;
+    });
+    s2 = nh.subscribe<geometry_msgs::WrenchStamped>(g_node + "/wrench_world", 1000,
+                                                    [this](const geometry_msgs::WrenchStamped::ConstPtr& m) {
+                                                      world[m->header.stamp.toNSec()] = *m;
+                                                    });
+  }
+  bool has(const ros::Time& t) const { return body.count(t.toNSec()) && world.count(t.toNSec()); }
+  void spinUntil(const std::function<bool()>& done, double timeout) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::ok() && ros::WallTime::now() < end && !done()) {
+      ros::spinOnce();
+      ros::WallDuration(0.005).sleep();
+    }
+  }
+};
+
+Listener* g_listener = nullptr;
+
+bool connect(const ros::Publisher* pub) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    if ((!pub || pub->getNumSubscribers() > 0) && g_listener->s1.getNumPublishers() > 0 &&
+        g_listener->s2.getNumPublishers() > 0)
+      return true;
+    ros::WallDuration(0.05).sleep();
+    ros::spinOnce();
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(VesselNode, WrenchSeriesMatchesCoreAndCli) {
+  const std::vector<Sample> tr = track();
+  Listener& l = *g_listener;
+  ros::NodeHandle nh;
+  if (g_mode == "live" && g_source == "tf") {
+    // Lockstep by hand, as a simulator would: broadcast the vessel frame, wait for its wrench.
+    ASSERT_TRUE(connect(nullptr)) << "no connection to " << g_node;
+    tf2_ros::TransformBroadcaster br;
+    ros::WallDuration(0.5).sleep();
+    for (const Sample& s : tr) {
+      geometry_msgs::TransformStamped t;
+      t.header.stamp = s.stamp;
+      t.header.frame_id = "world";
+      t.child_frame_id = "base_link";
+      t.transform.translation.x = s.pose.position.x;
+      t.transform.translation.y = s.pose.position.y;
+      t.transform.translation.z = s.pose.position.z;
+      t.transform.rotation = s.pose.orientation;
+      // Sent again until answered: the first ones may go out before tf's connection is up.
+      for (int k = 0; k < 40 && !l.has(s.stamp); ++k) {
+        br.sendTransform(t);
+        l.spinUntil([&] { return l.has(s.stamp); }, 0.5);
+      }
+    }
+  } else if (g_mode == "live" && g_source == "odometry") {
+    ros::Publisher pub = nh.advertise<nav_msgs::Odometry>(g_node + "/vessel_odom", 100);
+    ASSERT_TRUE(connect(&pub)) << "no connection to " << g_node;
+    for (const Sample& s : tr) {
+      nav_msgs::Odometry m;
+      m.header.stamp = s.stamp;
+      m.header.frame_id = "world";
+      m.child_frame_id = "base_link";
+      m.pose.pose = s.pose;
+      m.twist.twist.linear.x = 1e3;  // not used: the velocities come from the poses
+      pub.publish(m);
+      ros::WallDuration(0.02).sleep();
+      ros::spinOnce();
+    }
+  } else if (g_mode == "live") {
+    ros::Publisher pub = nh.advertise<geometry_msgs::PoseStamped>(g_node + "/vessel_pose", 100);
+    ASSERT_TRUE(connect(&pub)) << "no connection to " << g_node;
+    for (const Sample& s : tr) {
+      pub.publish(toMsg(s));
+      ros::WallDuration(0.02).sleep();
+      ros::spinOnce();
+    }
+  } else {
+    ASSERT_TRUE(connect(nullptr)) << "no connection to " << g_node;
+    const std::string bag_file = (fs::temp_directory_path() / ("md_vessel_" + std::to_string(::getpid()) + ".bag")).string();
+    {
+      rosbag::Bag bag(bag_file, rosbag::bagmode::Write);
+      for (const Sample& s : tr) bag.write(g_node + "/vessel_pose", s.stamp, toMsg(s));
+    }
+    const std::string cmd = "rosbag play --clock -q --wait-for-subscribers -r 5 " + bag_file + " >/dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::remove(bag_file.c_str());
+  }
+  l.spinUntil([&] { return l.has(tr.back().stamp); }, 60.0);
+
+  const std::vector<Row> ref = coreSeries(tr);
+  const std::vector<std::vector<std::string>> cli = cliSeries(tr);
+  ASSERT_EQ(ref.size(), tr.size());
+  ASSERT_EQ(cli.size(), tr.size()) << "rows of cable_sim's vessel_timeseries.csv";
+  for (std::size_t k = 0; k < tr.size(); ++k) {
+    ASSERT_TRUE(l.has(tr[k].stamp)) << "no wrench for sample " << k << " (" << g_mode << ")";
+    const geometry_msgs::WrenchStamped& b = l.body[tr[k].stamp.toNSec()];
+    EXPECT_EQ(b.header.frame_id, "base_link");
+    EXPECT_EQ(l.world[tr[k].stamp.toNSec()].header.frame_id, "world");
+    const Row node = rowOf(b, l.world[tr[k].stamp.toNSec()]);
+    for (std::size_t c = 0; c < 12; ++c) {
+      // Bits: the same doubles through the same code.
+      EXPECT_EQ(node[c], ref[k][c]) << "sample " << k << " column " << c;
+      ASSERT_GT(cli[k].size(), c + 1);
+      EXPECT_EQ(csv12(node[c]), cli[k][c + 1]) << "sample " << k << " column " << c << " (cable_sim)";
+    }
+  }
+  // The surge and yaw motion does something: the wrench is not the same at every sample.
+  EXPECT_NE(ref.front()[0], ref.back()[0]);
+}
+
+TEST(VesselNode, BadSamplesAreCountedAndTheWrenchStaysFinite) {
+  if (g_mode != "live" || g_source != "pose") GTEST_SKIP() << "live PoseStamped only";
+  Listener& l = *g_listener;
+  ros::NodeHandle nh;
+  ros::Publisher pub = nh.advertise<geometry_msgs::PoseStamped>(g_node + "/vessel_pose", 100);
+  ASSERT_TRUE(connect(&pub));
+  std::map<std::string, std::string> overall;
+  std::vector<std::string> line_status;
+  ros::Subscriber diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& st : m->status) {
+          if (st.name.find("vessel lockstep") != std::string::npos) {
+            overall.clear();
+            for (const auto& kv : st.values) overall[kv.key] = kv.value;
+          } else if (st.name.find(" line ") != std::string::npos) {
+            line_status.push_back(st.name);
+          }
+        }
+      });
+  const ros::Time t_last = kStart + ros::Duration(kDt * (kSamples - 1));
+  auto pose = [](double qx, double qy, double qz, double qw, const ros::Time& stamp) {
+    geometry_msgs::PoseStamped m;
+    m.header.stamp = stamp;
+    m.header.frame_id = "world";
+    m.pose.orientation.x = qx;
+    m.pose.orientation.y = qy;
+    m.pose.orientation.z = qz;
+    m.pose.orientation.w = qw;
+    return m;
+  };
+  const ros::Time bad1 = t_last + ros::Duration(0.1), bad2 = t_last + ros::Duration(0.2);
+  const ros::Time back = t_last - ros::Duration(0.45), good = t_last + ros::Duration(0.1);
+  pub.publish(pose(0, 0, std::nan(""), 1, bad1));       // NaN quaternion
+  pub.publish(pose(0, 0, 0, 1.1, bad2));                 // norm 1.1
+  pub.publish(pose(0, 0, 0, 1, back));                   // stamp going back (by less than loop_back)
+  ros::WallDuration(0.1).sleep();
+  pub.publish(pose(0, 0, 0, 1, good));                   // good again
+  l.spinUntil([&] { return l.has(good); }, 20.0);
+  ASSERT_TRUE(l.has(good)) << "the node did not answer a good pose after the bad ones";
+  EXPECT_FALSE(l.has(bad2));
+  EXPECT_FALSE(l.has(back)) << "a stamp going back was answered";
+  const geometry_msgs::Wrench& w = l.body[good.toNSec()].wrench;
+  for (double v : {w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y, w.torque.z}) EXPECT_TRUE(std::isfinite(v));
+  // /diagnostics (every ~diagnostics_period, wall clock): 3 samples dropped in all.
+  l.spinUntil([&] { return overall.count("samples dropped") && overall["samples dropped"] == "3"; }, 10.0);
+  EXPECT_EQ(overall["samples dropped"], "3") << "last event: " << overall["last event"];
+  EXPECT_FALSE(line_status.empty());
+  bool named = false;
+  for (const auto& n : line_status) named = named || n.find("line bow") != std::string::npos;
+  EXPECT_TRUE(named) << "one diagnostic status per line, named";
+}
+
+TEST(VesselNode, SolveStaticService) {
+  const std::string srv_name = g_node + "/solve_static";
+  ASSERT_TRUE(ros::service::waitForService(srv_name, ros::Duration(20.0)));
+  VesselStatics srv;
+  srv.request.use_file_pose = true;
+  srv.request.want_stiffness = true;
+  srv.request.offset_dof = "surge";
+  srv.request.offset_range = 4.0;
+  srv.request.offset_steps = 3;
+  ASSERT_TRUE(ros::service::call(srv_name, srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  const core::SystemProblem s = core::loadSystemFromFile(kProblem);
+  const core::VesselStaticResult ref = core::solveVesselStatic(s, s.vessel.pose);
+  const auto& wb = srv.response.wrench_body;
+  EXPECT_EQ(wb.force.x, ref.wrench.force_body.x());
+  EXPECT_EQ(wb.force.y, ref.wrench.force_body.y());
+  EXPECT_EQ(wb.force.z, ref.wrench.force_body.z());
+  EXPECT_EQ(wb.torque.x, ref.wrench.moment_body.x());
+  EXPECT_EQ(wb.torque.y, ref.wrench.moment_body.y());
+  EXPECT_EQ(wb.torque.z, ref.wrench.moment_body.z());
+  EXPECT_EQ(srv.response.wrench_world.force.x, ref.wrench.force_world.x());
+  ASSERT_EQ(srv.response.line_names.size(), 3u);
+  EXPECT_EQ(srv.response.line_names[0], "bow");
+  EXPECT_EQ(srv.response.top_tension[0], ref.system.lines[0].topTension());
+  EXPECT_GT(srv.response.stiffness[0], 0.0) << "surge";
+  EXPECT_GT(srv.response.stiffness[7], 0.0) << "sway";
+  EXPECT_GT(srv.response.stiffness[35], 0.0) << "yaw";
+  ASSERT_EQ(srv.response.offsets.size(), 3u);
+  EXPECT_DOUBLE_EQ(srv.response.offsets[0], -4.0);
+  // Pushed forward, the lines pull it back: restoring surge force falls with the offset.
+  EXPECT_GT(srv.response.restoring[0], srv.response.restoring[2]);
+  EXPECT_EQ(srv.response.max_tension_line.size(), 3u);
+
+  // Bad values: success false, the field named.
+  VesselStatics bad;
+  bad.request.pose.position.x = std::nan("");
+  bad.request.pose.orientation.w = 1.0;
+  ASSERT_TRUE(ros::service::call(srv_name, bad));
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("pose.position"), std::string::npos) << bad.response.message;
+  VesselStatics bad2;
+  bad2.request.use_file_pose = true;
+  bad2.request.offset_dof = "sideways";
+  ASSERT_TRUE(ros::service::call(srv_name, bad2));
+  EXPECT_FALSE(bad2.response.success);
+  EXPECT_NE(bad2.response.message.find("offset_dof"), std::string::npos) << bad2.response.message;
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_vessel_node");
+  ros::NodeHandle pnh("~");
+  pnh.param<std::string>("mode", g_mode, g_mode);
+  pnh.param<std::string>("node", g_node, g_node);
+  pnh.param<std::string>("source", g_source, g_source);
+  Listener l;
+  g_listener = &l;
+  return RUN_ALL_TESTS();
+}
