@@ -337,7 +337,11 @@ void readLine(const Item& it, Problem& pb, const std::map<std::string, std::size
     Segment seg;
     seg.material = lookup(m.at("material"), mat_index, mat_names, "material");
     seg.length = m.number("length", Range::Positive);
-    seg.spacing = m.number("spacing", seg.spacing, Range::Positive);
+    // Default spacing: 1 m, or the whole segment when it is shorter (the same single interval).
+    seg.spacing = m.number("spacing", std::min(seg.spacing, seg.length), Range::Positive);
+    if (seg.spacing > seg.length)
+      m.at("spacing").fail("must be <= the segment length " + m.sub("length") + " = " + formatNumber(seg.length) +
+                           " m (a spacing beyond the segment collapses it to one interval)");
     for (std::size_t b : pending) seg.bodies.push_back(BodyPlacement{b, 0.0});
     pending.clear();
     if (presentAndNotNull(m, "bodies")) {
@@ -412,6 +416,15 @@ void readCatalogue(const Map& top, std::vector<Material>& materials, std::vector
   }
 }
 
+void readLimits(const Item& it, ResourceLimits& lim) {
+  const Map m(it, {"max_nodes", "max_steps", "max_memory_mb"});
+  lim.max_nodes = m.number("max_nodes", lim.max_nodes, Range::Positive);
+  lim.max_steps = m.number("max_steps", lim.max_steps, Range::Positive);
+  lim.max_memory_mb = m.number("max_memory_mb", lim.max_memory_mb, Range::Positive);
+  const std::string e = lim.validate();
+  if (!e.empty()) throw ProblemError(e + lineSuffix(it.mark));
+}
+
 /// `model: 2d | 3d`.
 Formulation readModel(const Item& mi) {
   const std::string v = readString(mi);
@@ -428,7 +441,7 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
     throw ProblemError("top level: expected a map with keys materials, line, top, ..., found " + typeName(root) +
                        lineSuffix(rit.mark));
   const Map top(rit, {"name", "model", "environment", "materials", "bodies", "line", "anchor", "free_end", "top",
-                      "solver", "dynamics"});
+                      "solver", "dynamics", "limits"});
   Problem pb;
   if (top.has("name")) pb.name = readString(top.at("name"));
   if (top.has("model")) pb.formulation = readModel(top.at("model"));
@@ -476,6 +489,7 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   readTop(top.required("top"), pb.top, body_index, body_names);
   if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), pb.static_options);
   if (presentAndNotNull(top, "dynamics")) readDynamics(top.at("dynamics"), pb.dynamics, pb.totalLength());
+  if (presentAndNotNull(top, "limits")) readLimits(top.at("limits"), pb.limits);
 
   std::string msg = pb.static_options.validate();
   if (msg.empty()) msg = pb.validate();
