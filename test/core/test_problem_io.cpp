@@ -613,3 +613,13 @@ TEST(ProblemIo, TopBelowTheSeabedNamesTopZAndTheDepth) {
   EXPECT_ERROR_HAS(minimalReplaced("z: 0", "z: -90") + "environment: {depth: 80}\n", "top.position.z = -90",
                    "environment.depth = 80", "below the seabed");
 }
+
+TEST(ProblemIo, CommaStartingALineIsASyntaxErrorNotAHang) {
+  // yaml-cpp 0.7 loops without end on these (found by scripts/fuzz); refused before it sees them.
+  EXPECT_ERROR_HAS(", x\n", "YAML syntax error at line 1", "','");
+  EXPECT_ERROR_HAS("- a\n, b\n", "YAML syntax error at line 2");
+  EXPECT_ERROR_HAS("a: 1\n---\n, x\n", "YAML syntax error at line 3");
+  // Commas inside flow collections, quotes and comments stay what they are.
+  EXPECT_EQ(errorOf(minimalWith("# a comment \"with a quote\n# , and a comma\nname: \"x\n  , y\"\n")), "");
+  EXPECT_EQ(errorOf(minimalWith("dynamics: {duration: 5\n  , dt: 0.1}\n")), "");
+}
