@@ -506,29 +506,32 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
 void rejectStrayFlowEntry(const std::string& text) {
   int depth = 0;
   char quote = 0;
-  bool line_start = true;
+  bool line_start = true, after_quote = false;
   int line = 1;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (c == '\n') {
       ++line;
       line_start = true;
+      if (!quote) after_quote = false;
       continue;
     }
     if (quote) {
       if (quote == '"' && c == '\\') ++i;
-      else if (c == quote) quote = 0;
+      else if (c == quote) quote = 0, after_quote = true;
       continue;
     }
-    if (line_start && (c == ' ' || c == '\t' || c == '\r')) continue;
-    if (line_start && c == ',' && depth == 0)
+    if ((line_start || after_quote) && (c == ' ' || c == '\t' || c == '\r')) continue;
+    // `"x", y` outside a flow collection loops yaml-cpp as well (a third fuzz timeout).
+    if ((line_start || after_quote) && c == ',' && depth == 0)
       throw ProblemError("YAML syntax error at line " + std::to_string(line) +
                          ": ',' outside a flow collection [...] or {...}");
     line_start = false;
+    after_quote = false;
     if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' || text[i - 1] == '\n')) {
       while (i + 1 < text.size() && text[i + 1] != '\n') ++i;  // comment to the end of the line
     } else if ((c == '"' || c == '\'') &&
-               (i == 0 || std::string(" \t[{,:-?").find(text[i - 1]) != std::string::npos)) {
+               (i == 0 || std::string(" \t\n[{,:-?").find(text[i - 1]) != std::string::npos)) {
       quote = c;  // a quoted scalar starts after an indicator or a blank, not inside "Gobat's"
     } else if (c == '[' || c == '{') {
       ++depth;
