@@ -619,6 +619,7 @@ TEST(ProblemIo, CommaStartingALineIsASyntaxErrorNotAHang) {
   EXPECT_ERROR_HAS(", x\n", "YAML syntax error at line 1", "','");
   EXPECT_ERROR_HAS("- a\n, b\n", "YAML syntax error at line 2");
   EXPECT_ERROR_HAS("a: 1\n---\n, x\n", "YAML syntax error at line 3");
+  EXPECT_ERROR_HAS("\"x\", y\n", "YAML syntax error at line 1");
   // Commas inside flow collections, quotes and comments stay what they are.
   EXPECT_EQ(errorOf(minimalWith("# a comment \"with a quote\n# , and a comma\nname: \"x\n  , y\"\n")), "");
   EXPECT_EQ(errorOf(minimalWith("dynamics: {duration: 5\n  , dt: 0.1}\n")), "");
