@@ -17,13 +17,6 @@
 namespace mooring_dynamics {
 namespace cli {
 namespace detail {
-namespace {
-
-/// Upper bound on the node count a --spacing-scale may produce (guards against typos like 1e-9).
-constexpr double kMaxScaledNodes = 1.0e7;
-
-}  // namespace
-
 int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
   if (args.positionals.size() != 1)
     throw UsageError(args.positionals.empty() ? "missing PROBLEM.yaml"
@@ -52,17 +45,14 @@ int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
     return kExitBadInput;
   }
 
-  // Refinement studies: scale every segment's node spacing.
+  // Refinement studies: scale every segment's node spacing, then check the scaled problem again
+  // (spacing within each segment, node count and memory within problem.limits) before anything
+  // is allocated. A failure is the option's: a usage error naming the segment's key.
   if (spacing_scale != 1.0) {
-    double nodes = 1.0;
-    for (auto& seg : problem.segments) {
-      seg.spacing *= spacing_scale;
-      if (seg.spacing > 0.0) nodes += std::ceil(seg.length / seg.spacing);
-    }
-    if (nodes > kMaxScaledNodes)
-      throw UsageError("--spacing-scale " + args.values.at("spacing-scale") + " gives about " +
-                       std::to_string(static_cast<long long>(nodes)) + " nodes (limit " +
-                       std::to_string(static_cast<long long>(kMaxScaledNodes)) + ")");
+    for (auto& seg : problem.segments) seg.spacing *= spacing_scale;
+    const std::string invalid = problem.validate();
+    if (!invalid.empty())
+      throw UsageError("--spacing-scale " + args.values.at("spacing-scale") + ": " + invalid);
   }
 
   // Solve.

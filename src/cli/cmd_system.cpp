@@ -99,6 +99,10 @@ int runSystemStatic(const std::string& path, bool want_table, std::size_t stride
   if (!loadSystem(path, s, err)) return kExitBadInput;
   for (auto& l : s.lines)
     for (auto& g : l.segments) g.spacing *= spacing_scale;
+  if (spacing_scale != 1.0) {
+    const std::string invalid = s.validate();
+    if (!invalid.empty()) throw UsageError("--spacing-scale " + fmtNum("%g", spacing_scale) + ": " + invalid);
+  }
   core::SystemStaticResult r;
   try {
     r = core::solveSystemStatic(s);
@@ -177,6 +181,11 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
         << " to the system file or pass --duration S\n";
     return kExitBadInput;
   }
+  const std::string invalid = s.validate();  // again: the overrides may have changed dt and duration
+  if (!invalid.empty()) {
+    err << kProg << ": error: " << path << ": " << invalid << " (after the command-line overrides)\n";
+    return kExitBadInput;
+  }
   const auto wall0 = std::chrono::steady_clock::now();
   std::unique_ptr<core::SystemDynamics> sim;
   try {
@@ -206,6 +215,17 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   for (long k = 1; k <= samples && ok; ++k) {
     ok = sim->advanceTo(k * dout, &why);
     if (ok) sample();
+  }
+  // The end time when the duration is not a whole number of samples (as a single line's run).
+  if (ok && s.dynamics.duration - static_cast<double>(samples) * dout > 1e-9 * dout) {
+    ok = sim->advanceTo(s.dynamics.duration, &why);
+    if (ok) sample();
+  }
+  // Never "completed" short of the end time.
+  if (ok && !(sim->time() >= s.dynamics.duration * (1.0 - 1e-9))) {
+    ok = false;
+    why = "reached t = " + fmtNum("%g", sim->time()) + " s of dynamics.duration = " +
+          fmtNum("%g", s.dynamics.duration) + " s";
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   out << s.name << ": system dynamic run " << (ok ? "completed" : "STOPPED") << "\n";

@@ -549,3 +549,78 @@ TEST(ProblemIo, DocumentationExampleLoads) {
   EXPECT_EQ(p.segments.size(), 3u);
   EXPECT_EQ(p.top.type, TopBoundary::Type::Buoy);
 }
+
+// ---- issue 22: tags, spacing, limits -----------------------------------------------------------
+
+TEST(ProblemIo, ExplicitStringTagIsNotANumber) {
+  // `!!str 5` is the text "5" (YAML core schema), refused where a number, integer or bool is due.
+  EXPECT_ERROR_HAS(mutate("depth: 100", "depth: !!str 100"), "environment.depth", "!!str", "expected a number");
+  EXPECT_ERROR_HAS(mutate("max_iterations: 200", "max_iterations: !!str 200"), "max_iterations", "!!str",
+                   "expected an integer");
+  EXPECT_ERROR_HAS(mutate("adaptive_relaxation: false", "adaptive_relaxation: !!str false"), "adaptive_relaxation",
+                   "!!str");
+  EXPECT_ERROR_HAS(mutate("depth: 100", "depth: !custom 100"), "environment.depth", "!custom");
+  // The core schema's own number tags say what the plain scalar says: accepted.
+  EXPECT_EQ(errorOf(mutate("depth: 100", "depth: !!float 100")), "");
+  EXPECT_EQ(errorOf(mutate("max_iterations: 200", "max_iterations: !!int 200")), "");
+}
+
+TEST(ProblemIo, SpacingBeyondTheSegmentIsRefused) {
+  EXPECT_ERROR_HAS(mutate("length: 45.0, spacing: 0.5", "length: 45.0, spacing: 50"), "line[1].spacing", "50",
+                   "must be <=", "45");
+  // Equal to the length is one interval, as asked.
+  EXPECT_EQ(errorOf(mutate("length: 45.0, spacing: 0.5", "length: 45.0, spacing: 45")), "");
+}
+
+/// kMinimal with `from` replaced by `to` (first occurrence).
+std::string minimalReplaced(const std::string& from, const std::string& to) {
+  std::string s = kMinimal;
+  s.replace(s.find(from), from.size(), to);
+  return s;
+}
+
+TEST(ProblemIo, DefaultSpacingOfAShortSegmentIsTheSegment) {
+  // The 1 m default on a 0.4 m segment: one interval either way; the default is not an error.
+  const Problem p = loadProblemFromString(
+      minimalReplaced("- {material: chain, length: 150}", "- {material: chain, length: 149.6}\n  - {material: chain, length: 0.4}"));
+  ASSERT_EQ(p.segments.size(), 2u);
+  EXPECT_DOUBLE_EQ(p.segments[0].spacing, 1.0);
+  EXPECT_DOUBLE_EQ(p.segments[1].spacing, 0.4);
+}
+
+TEST(ProblemIo, LimitsSectionRaisesAndLowersTheLimits) {
+  // 150 m at 1 m: 151 nodes (150 intervals).
+  EXPECT_ERROR_HAS(minimalWith("limits: {max_nodes: 150}\n"), "limits.max_nodes", "151 nodes");
+  EXPECT_EQ(errorOf(minimalWith("limits: {max_nodes: 151}\n")), "");
+  const Problem p = loadProblemFromString(minimalWith("limits: {max_nodes: 2e6, max_steps: 1e8, max_memory_mb: 100}\n"));
+  EXPECT_EQ(p.limits.max_nodes, 2e6);
+  EXPECT_EQ(p.limits.max_steps, 1e8);
+  EXPECT_EQ(p.limits.max_memory_mb, 100);
+  EXPECT_ERROR_HAS(minimalWith("limits: {max_nodes: -1}\n"), "limits.max_nodes", "must be > 0");
+  EXPECT_ERROR_HAS(minimalWith("limits: {max_memory_mb: 1e12}\n"), "limits.max_memory_mb", "1e+12");
+  EXPECT_ERROR_HAS(minimalWith("limits: {nodes: 5}\n"), "limits.nodes", "unknown key");
+}
+
+TEST(ProblemIo, StepCountBeyondTheLimitIsRefused) {
+  // 5 s at 1e-6 s: 5e6 steps, within 1e7; at 1e-7 s: 5e7, beyond.
+  EXPECT_EQ(errorOf(minimalWith("dynamics: {duration: 5, dt: 1e-6}\n")), "");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {duration: 5, dt: 1e-7}\n"), "dynamics.duration = 5", "dynamics.dt = 1e-07",
+                   "5e+07", "limits.max_steps");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {duration: 5, dt: 1e20}\n"), "dynamics.dt", "must be <= dynamics.duration");
+}
+
+TEST(ProblemIo, TopBelowTheSeabedNamesTopZAndTheDepth) {
+  EXPECT_ERROR_HAS(minimalReplaced("z: 0", "z: -90") + "environment: {depth: 80}\n", "top.position.z = -90",
+                   "environment.depth = 80", "below the seabed");
+}
+
+TEST(ProblemIo, CommaStartingALineIsASyntaxErrorNotAHang) {
+  // yaml-cpp 0.7 loops without end on these (found by scripts/fuzz); refused before it sees them.
+  EXPECT_ERROR_HAS(", x\n", "YAML syntax error at line 1", "','");
+  EXPECT_ERROR_HAS("- a\n, b\n", "YAML syntax error at line 2");
+  EXPECT_ERROR_HAS("a: 1\n---\n, x\n", "YAML syntax error at line 3");
+  EXPECT_ERROR_HAS("\"x\", y\n", "YAML syntax error at line 1");
+  // Commas inside flow collections, quotes and comments stay what they are.
+  EXPECT_EQ(errorOf(minimalWith("# a comment \"with a quote\n# , and a comma\nname: \"x\n  , y\"\n")), "");
+  EXPECT_EQ(errorOf(minimalWith("dynamics: {duration: 5\n  , dt: 0.1}\n")), "");
+}

@@ -337,7 +337,11 @@ void readLine(const Item& it, Problem& pb, const std::map<std::string, std::size
     Segment seg;
     seg.material = lookup(m.at("material"), mat_index, mat_names, "material");
     seg.length = m.number("length", Range::Positive);
-    seg.spacing = m.number("spacing", seg.spacing, Range::Positive);
+    // Default spacing: 1 m, or the whole segment when it is shorter (the same single interval).
+    seg.spacing = m.number("spacing", std::min(seg.spacing, seg.length), Range::Positive);
+    if (seg.spacing > seg.length)
+      m.at("spacing").fail("must be <= the segment length " + m.sub("length") + " = " + formatNumber(seg.length) +
+                           " m (a spacing beyond the segment collapses it to one interval)");
     for (std::size_t b : pending) seg.bodies.push_back(BodyPlacement{b, 0.0});
     pending.clear();
     if (presentAndNotNull(m, "bodies")) {
@@ -412,6 +416,15 @@ void readCatalogue(const Map& top, std::vector<Material>& materials, std::vector
   }
 }
 
+void readLimits(const Item& it, ResourceLimits& lim) {
+  const Map m(it, {"max_nodes", "max_steps", "max_memory_mb"});
+  lim.max_nodes = m.number("max_nodes", lim.max_nodes, Range::Positive);
+  lim.max_steps = m.number("max_steps", lim.max_steps, Range::Positive);
+  lim.max_memory_mb = m.number("max_memory_mb", lim.max_memory_mb, Range::Positive);
+  const std::string e = lim.validate();
+  if (!e.empty()) throw ProblemError(e + lineSuffix(it.mark));
+}
+
 /// `model: 2d | 3d`.
 Formulation readModel(const Item& mi) {
   const std::string v = readString(mi);
@@ -428,7 +441,7 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
     throw ProblemError("top level: expected a map with keys materials, line, top, ..., found " + typeName(root) +
                        lineSuffix(rit.mark));
   const Map top(rit, {"name", "model", "environment", "materials", "bodies", "line", "anchor", "free_end", "top",
-                      "solver", "dynamics"});
+                      "solver", "dynamics", "limits"});
   Problem pb;
   if (top.has("name")) pb.name = readString(top.at("name"));
   if (top.has("model")) pb.formulation = readModel(top.at("model"));
@@ -476,6 +489,7 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   readTop(top.required("top"), pb.top, body_index, body_names);
   if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), pb.static_options);
   if (presentAndNotNull(top, "dynamics")) readDynamics(top.at("dynamics"), pb.dynamics, pb.totalLength());
+  if (presentAndNotNull(top, "limits")) readLimits(top.at("limits"), pb.limits);
 
   std::string msg = pb.static_options.validate();
   if (msg.empty()) msg = pb.validate();
@@ -483,8 +497,53 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   return pb;
 }
 
+/// yaml-cpp 0.7 loops without end, allocating, on a flow-entry ',' outside any flow collection
+/// in some parser states (a document starting with ", x"; "- a\n, b"; found by scripts/fuzz).
+/// In block context a line cannot start with ',' (an indicator, not a scalar), so such a line is
+/// a syntax error: refused before yaml-cpp sees it. Flow depth is tracked outside quotes and
+/// comments; the rare multi-line plain or block scalar whose next line starts with ',' is
+/// refused too.
+void rejectStrayFlowEntry(const std::string& text) {
+  int depth = 0;
+  char quote = 0;
+  bool line_start = true, after_quote = false;
+  int line = 1;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      line_start = true;
+      if (!quote) after_quote = false;
+      continue;
+    }
+    if (quote) {
+      if (quote == '"' && c == '\\') ++i;
+      else if (c == quote) quote = 0, after_quote = true;
+      continue;
+    }
+    if ((line_start || after_quote) && (c == ' ' || c == '\t' || c == '\r')) continue;
+    // `"x", y` outside a flow collection loops yaml-cpp as well (a third fuzz timeout).
+    if ((line_start || after_quote) && c == ',' && depth == 0)
+      throw ProblemError("YAML syntax error at line " + std::to_string(line) +
+                         ": ',' outside a flow collection [...] or {...}");
+    line_start = false;
+    after_quote = false;
+    if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' || text[i - 1] == '\n')) {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;  // comment to the end of the line
+    } else if ((c == '"' || c == '\'') &&
+               (i == 0 || std::string(" \t\n[{,:-?").find(text[i - 1]) != std::string::npos)) {
+      quote = c;  // a quoted scalar starts after an indicator or a blank, not inside "Gobat's"
+    } else if (c == '[' || c == '{') {
+      ++depth;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
 YAML::Node parseYaml(const std::string& yaml_text) {
   YAML::Node root;
+  rejectStrayFlowEntry(yaml_text);
   try {
     const std::vector<YAML::Node> docs = YAML::LoadAll(yaml_text);
     if (docs.size() > 1)
@@ -506,10 +565,19 @@ std::string readFileText(const std::string& path) {
     const std::error_code ec(errno, std::generic_category());
     throw ProblemError(path + ": cannot read file (" + ec.message() + ")");
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  // Read at most kMaxProblemFileBytes: a problem file is a few kB (a current table of a million
+  // points ~40 MB); a device such as /dev/zero would otherwise fill the memory.
+  constexpr std::size_t kMaxProblemFileBytes = 256u << 20;
+  std::string text;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    text.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxProblemFileBytes)
+      throw ProblemError(path + ": larger than " + std::to_string(kMaxProblemFileBytes >> 20) +
+                         " MB; not a problem file");
+  }
   if (in.bad()) throw ProblemError(path + ": read error");
-  return ss.str();
+  return text;
 }
 
 }  // namespace sections

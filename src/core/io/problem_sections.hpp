@@ -33,6 +33,8 @@ struct Catalogue {
 };
 void readCatalogue(const Map& top, std::vector<Material>& materials, std::vector<Body>& bodies, Catalogue& cat);
 Formulation readModel(const Item& mi);
+/// `limits:` {max_nodes, max_steps, max_memory_mb} (limits.hpp, docs/problem_format.md "Limits").
+void readLimits(const Item& it, ResourceLimits& lim);
 /// One YAML document from text (ProblemError on syntax errors or several documents).
 YAML::Node parseYaml(const std::string& yaml_text);
 /// A file's text (ProblemError when it cannot be read).

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <system_error>
@@ -122,6 +123,10 @@ SeabedGrid readSeabedGrid(std::istream& in, const std::string& name) {
 }
 
 SeabedGrid loadSeabedGrid(const std::string& path) {
+  // A device or a pipe (/dev/zero, /dev/stdin) may never end: grids are files.
+  std::error_code fec;
+  if (std::filesystem::exists(path, fec) && !std::filesystem::is_regular_file(path, fec))
+    throw ProblemError(path + ": not a regular file (a seabed grid is read from a file)");
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     const std::error_code ec(errno, std::generic_category());

@@ -106,7 +106,7 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
   const Item rit{root, "", markOf(root, YAML::Mark::null_mark())};
   if (!root.IsMap()) throw ProblemError("top level: expected a map" + lineSuffix(rit.mark));
   const Map top(rit, {"name", "model", "environment", "materials", "bodies", "points", "lines", "solver",
-                      "dynamics", "vessel"});
+                      "dynamics", "vessel", "limits"});
   SystemProblem sp;
   if (top.has("name")) sp.name = readString(top.at("name"));
   if (top.has("model")) sp.formulation = readModel(top.at("model"));
@@ -182,6 +182,10 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
     const Map m(lit[i], {"name", "from", "to", "segments", "end_body"});
     SystemLine l;
     l.name = m.has("name") ? readString(m.at("name")) : "line" + std::to_string(i);
+    for (const SystemLine& prev : sp.lines)
+      if (prev.name == l.name)
+        (m.has("name") ? m.at("name") : lit[i]).fail("duplicate line name (every line needs its own: it names the "
+                                                     "output files and columns)");
     const Item fi = m.required("from");
     if (readString(fi) == "free") l.from = SystemLine::kFreeEnd;
     else l.from = lookup(fi, point_index, point_names, "point");
@@ -207,6 +211,7 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
       di.fail("top_motion: a system's free points move by themselves; there is no top motion to give");
     if (!sp.dynamics.record_s.empty()) di.fail("record_s: not used by systems (every line's top tension is written)");
   }
+  if (presentAndNotNull(top, "limits")) readLimits(top.at("limits"), sp.limits);
   std::string msg = sp.static_options.validate();
   if (msg.empty()) msg = sp.validate();
   if (!msg.empty()) throw ProblemError(msg);

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <system_error>
 
 #include "mooring_dynamics/core/io/problem_io.hpp"
@@ -112,8 +113,21 @@ bool looksNonFinite(std::string s) {
   return s == "nan" || s == "inf" || s == "infinity";
 }
 
+/// An explicit YAML tag other than the core schema's `!!<allowed...>` makes a scalar something
+/// else than what it looks like (`!!str 5` is the text "5"): refused where a value is expected.
+void rejectForeignTag(const Item& it, std::initializer_list<const char*> allowed, const std::string& expected) {
+  const std::string& tag = it.node.Tag();
+  if (tag.empty() || tag == "?" || tag == "!") return;  // plain, or quoted (handled by the caller)
+  static const std::string kCore = "tag:yaml.org,2002:";
+  for (const char* a : allowed)
+    if (tag == kCore + a) return;
+  const std::string shown = tag.compare(0, kCore.size(), kCore) == 0 ? "!!" + tag.substr(kCore.size()) : tag;
+  it.fail("expected " + expected + ", found a scalar tagged " + shown + " (write the value without a tag)");
+}
+
 double readNumber(const Item& it) {
   if (!it.node.IsScalar() || it.node.Tag() == "!") it.wrongType("a number");
+  rejectForeignTag(it, {"float", "int"}, "a number");
   const std::string& s = it.node.Scalar();
   if (looksNonFinite(s)) it.fail("must be a finite number");
   const char* b = s.data();
@@ -129,6 +143,7 @@ double readNumber(const Item& it) {
 
 long long readInteger(const Item& it) {
   if (!it.node.IsScalar() || it.node.Tag() == "!") it.wrongType("an integer");
+  rejectForeignTag(it, {"int"}, "an integer");
   const std::string& s = it.node.Scalar();
   const char* b = s.data();
   const char* e = b + s.size();
@@ -141,6 +156,7 @@ long long readInteger(const Item& it) {
 
 bool readBool(const Item& it) {
   if (!it.node.IsScalar() || it.node.Tag() == "!") it.wrongType("true or false");
+  rejectForeignTag(it, {"bool"}, "true or false");
   std::string s = it.node.Scalar();
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (s == "true" || s == "yes" || s == "on") return true;

@@ -50,6 +50,14 @@ std::string DynamicOptions::validate() const {
   const std::string k = "dynamics.";
   if (!(std::isfinite(duration) && duration >= 0.0)) return bad(k + "duration", duration, "must be >= 0");
   if (!(std::isfinite(dt) && dt > 0.0)) return bad(k + "dt", dt, "must be > 0");
+  // A step longer than the run takes no step at all (the end time lies inside the first step's
+  // rounding tolerance): the run would say it completed having done nothing.
+  if (duration > 0.0 && dt > duration) {
+    std::ostringstream os;
+    os.precision(10);
+    os << "must be <= dynamics.duration = " << duration << " s";
+    return bad(k + "dt", dt, os.str());
+  }
   if (!(std::isfinite(output_interval) && output_interval >= 0.0))
     return bad(k + "output_interval", output_interval, "must be >= 0");
   if (output_interval > 0.0) {

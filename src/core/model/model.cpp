@@ -130,13 +130,24 @@ namespace {
 /// The interval of a current table (size(), depth(i) [m], comp(i, cx, cy) [m/s]) that depth d
 /// interpolates in: i with depth(i-1) < d <= depth(i), d strictly inside the table; 0 when d
 /// takes an end's value (and for tables of fewer than two points).
+/// The smallest i >= 1 with depth(i) >= d, for depth(0) < d <= depth(n - 1): a bisection, so a
+/// table of a million points costs 20 comparisons per lookup (the depths increase, validated).
+template <class Table>
+std::size_t intervalAtOrAbove(const Table& table, double d) {
+  std::size_t lo = 1, hi = table.size() - 1;  // the answer lies in [lo, hi]
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (d > table.depth(mid)) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
 template <class Table>
 std::size_t valueInterval(const Table& table, double d) {
   const std::size_t n = table.size();
   if (n < 2 || d <= table.depth(0) || d >= table.depth(n - 1)) return 0;
-  std::size_t i = 1;
-  while (d > table.depth(i)) ++i;
-  return i;
+  return intervalAtOrAbove(table, d);
 }
 
 /// Whether valueInterval(table, d) is i > 0, without the search.
@@ -174,8 +185,7 @@ void interpolateCurrent(const Table& table, double z, bool slope, double& ux, do
   }
   if (d <= table.depth(0) || d > table.depth(n - 1)) return;
   // d in (depth[i-1], depth[i]] uses interval i; du/dz = -du/dd (depth grows downward, z upward).
-  std::size_t i = 1;
-  while (d > table.depth(i)) ++i;
+  const std::size_t i = intervalAtOrAbove(table, d);
   double ax, ay, bx, by;
   table.comp(i - 1, ax, ay);
   table.comp(i, bx, by);
@@ -400,6 +410,9 @@ std::string Problem::validate() const {
     if (s.material >= materials.size()) return r + ".material index " + std::to_string(s.material) + ": unknown material";
     if (!(e = check(finite(s.length) && s.length > 0.0, r + ".length", s.length, "must be > 0")).empty()) return e;
     if (!(e = check(finite(s.spacing) && s.spacing > 0.0, r + ".spacing", s.spacing, "must be > 0")).empty()) return e;
+    if (!(e = check(s.spacing <= s.length, r + ".spacing", s.spacing,
+                    "must be <= the segment length " + r + ".length = " + fmt(s.length) +
+                        " m (a spacing beyond the segment collapses it to one interval)")).empty()) return e;
     for (std::size_t j = 0; j < s.bodies.size(); ++j) {
       const auto& bp = s.bodies[j];
       const std::string rb = r + ".bodies[" + std::to_string(j) + "]";
@@ -453,6 +466,12 @@ std::string Problem::validate() const {
       if (!(e = check(finite(top.x), "top.position.x", top.x, "must be finite")).empty()) return e;
       if (!(e = check(finite(top.z), "top.position.z", top.z, "must be finite")).empty()) return e;
       if (!(e = check(finite(top.y), "top.position.y", top.y, "must be finite")).empty()) return e;
+      // A top below the seabed has no equilibrium: the statics would iterate to their limit.
+      const double ztop_bed = env.seabedElevation(top.x, top.y);
+      if (top.z < ztop_bed - 1e-6 * env.depth)
+        return "top.position.z = " + fmt(top.z) + ": below the seabed (z = " + fmt(ztop_bed) +
+               " m under the top; environment.depth = " + fmt(env.depth) +
+               " m); the top must lie above the seabed (z = 0 is the sea surface)";
       double reach = 0.0;
       for (const auto& s : segments) reach += s.length * (1.0 + materials[s.material].max_strain);
       const double dx = top.x - anchor_x, dy = top.y - anchor_y, dz = top.z - anchor_z;
@@ -483,7 +502,24 @@ std::string Problem::validate() const {
       break;
   }
   if (!(e = static_options.validate()).empty()) return e;
-  return dynamics.validate();
+  if (!(e = dynamics.validate()).empty()) return e;
+  return validateResources();
+}
+
+std::string Problem::validateResources() const {
+  std::string e;
+  if (!(e = limits.validate()).empty()) return e;
+  // The segment with the most intervals names the key to change.
+  std::size_t worst = 0;
+  for (std::size_t i = 1; i < segments.size(); ++i)
+    if (segments[i].length / segments[i].spacing > segments[worst].length / segments[worst].spacing) worst = i;
+  const std::string key = segments.empty() ? std::string("line")
+                                           : "line[" + std::to_string(worst) + "].spacing = " +
+                                                 fmt(segments[worst].spacing) + " (line[" + std::to_string(worst) +
+                                                 "].length = " + fmt(segments[worst].length) + " m)";
+  return checkResources(estimateResources(estimateLineNodes(segments), dynamics, formulation == Formulation::ThreeD,
+                                          4 * dynamics.record_s.size()),
+                        limits, key);
 }
 
 }  // namespace core

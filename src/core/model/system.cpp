@@ -16,6 +16,9 @@ namespace core {
 
 namespace {
 
+/// Points within this fraction of the water depth of the surface or the seabed count as on it.
+constexpr double kGeometryTolerance = 1e-6;
+
 std::string fmt(double v) {
   std::ostringstream os;
   os << v;
@@ -78,6 +81,11 @@ std::string SystemProblem::validate() const {
   }
   const std::size_t np = points.size();
   std::vector<int> used(np, 0);
+  for (std::size_t i = 0; i < lines.size(); ++i)  // names key the output files and columns
+    for (std::size_t j = 0; j < i; ++j)
+      if (lines[j].name == lines[i].name)
+        return "lines[" + std::to_string(i) + "].name = \"" + lines[i].name + "\": duplicate line name (also lines[" +
+               std::to_string(j) + "]); every line needs its own name";
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const SystemLine& l = lines[i];
     const std::string k = "lines[" + std::to_string(i) + "] (" + l.name + ")";
@@ -136,6 +144,39 @@ std::string SystemProblem::validate() const {
   if (!support)
     return "points: no anchor or fixed point; a system of free buoys and bodies has no static position "
            "(a drifting system is solved as a single line with a buoy and a free end)";
+  // Anchors lie on the seabed or above it and under the surface; fixed points above the seabed.
+  const double tol = kGeometryTolerance * environment.depth;
+  for (const SystemPoint& pt : points) {
+    if (pt.free()) continue;
+    const double bed = environment.seabedElevation(pt.x, pt.y);
+    const std::string k = "points." + pt.name + ".position.z = " + fmt(pt.z);
+    if (pt.type == SystemPoint::Type::Anchor && pt.z > tol)
+      return k + ": an anchor above the sea surface (z = 0); anchors lie on the seabed (z = " + fmt(bed) +
+             " m here, environment.depth = " + fmt(environment.depth) + " m)";
+    if (pt.z < bed - tol)
+      return k + ": below the seabed (z = " + fmt(bed) + " m here, environment.depth = " + fmt(environment.depth) + " m)";
+  }
+  // Spacing and the size of the whole system (limits.hpp), before any line is built.
+  std::string e;
+  if (!(e = limits.validate()).empty()) return e;
+  double nodes = 0.0;
+  std::string worst;
+  double worst_ratio = -1.0;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string prefix = "lines[" + std::to_string(i) + "].segments";
+    if (!(e = validateSpacing(lines[i].segments, prefix)).empty()) return e;
+    nodes += estimateLineNodes(lines[i].segments);
+    for (std::size_t j = 0; j < lines[i].segments.size(); ++j) {
+      const Segment& g = lines[i].segments[j];
+      if (g.length / g.spacing > worst_ratio) {
+        worst_ratio = g.length / g.spacing;
+        worst = prefix + "[" + std::to_string(j) + "].spacing = " + fmt(g.spacing) + " (length " + fmt(g.length) + " m)";
+      }
+    }
+  }
+  if (!(e = dynamics.validate()).empty()) return e;
+  if (!(e = checkResources(estimateResources(nodes, dynamics, formulation == Formulation::ThreeD, 3 * points.size() + lines.size()),
+                           limits, worst)).empty()) return e;
   // The single-line checks of every line at the initial positions (materials, segments, reach).
   std::vector<double> xyz;
   for (const SystemPoint& pt : points) xyz.insert(xyz.end(), {pt.x, pt.y, pt.z});

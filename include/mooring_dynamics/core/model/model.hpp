@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mooring_dynamics/core/model/dynamics_options.hpp"
+#include "mooring_dynamics/core/model/limits.hpp"
 #include "mooring_dynamics/core/model/waves.hpp"
 
 namespace mooring_dynamics {
@@ -248,10 +249,14 @@ struct Problem {
   TopBoundary top;
   StaticOptions static_options;
   DynamicOptions dynamics;        ///< problem-file section `dynamics:`
+  ResourceLimits limits;          ///< problem-file section `limits:` (limits.hpp)
 
   double totalLength() const;
   /// Empty when the problem is consistent, else a message naming the field, value and constraint.
   std::string validate() const;
+  /// The part of validate() on derived sizes: node and step counts and the memory estimate
+  /// against `limits` (limits.hpp); the CLI calls it again after its overrides.
+  std::string validateResources() const;
 };
 
 }  // namespace core

@@ -20,8 +20,10 @@ double value(const Eigen::AutoDiffScalar<D>& x) {
 /// sin x and cos x in one call where the compiler has one (glibc's sincos gives the values of its
 /// sin and cos: the same bits as the two calls, in about the time of one).
 inline void sinCos(double x, double& s, double& c) {
-#if defined(__GNUC__) || defined(__clang__)
+#if defined(__GNUC__) && !defined(__clang__)
   __builtin_sincos(x, &s, &c);
+#elif defined(__clang__) && defined(__GLIBC__)
+  ::sincos(x, &s, &c);  // clang has no __builtin_sincos; glibc's sincos (scripts/fuzz builds with clang)
 #else
   s = std::sin(x);
   c = std::cos(x);

@@ -80,6 +80,7 @@ struct SystemProblem {
   /// `dynamics:` of the file (duration, dt, scheme, tolerances; no top motion: the free points
   /// move by themselves) for SystemDynamics / `cable_sim dynamic`.
   DynamicOptions dynamics;
+  ResourceLimits limits;  ///< `limits:` of the file (limits.hpp), for all lines together
 
   /// Empty when consistent, else a message naming the field, value and constraint: unknown
   /// points, a line from a point to itself, unused points, a graph in several pieces, no anchor

@@ -122,6 +122,10 @@ StepReport advanceWithCuts(double& t, double base, int max_levels, double t_end,
 /// Run problem.dynamics with `Solver` from its static solution: samples on the output grid (plus
 /// the end time when the duration is not a whole multiple of it), recorded nodes, snapshots.
 /// `progress(t, duration)` is called after every output sample when given.
+/// Relative shortfall of the last sample's time below dynamics.duration that still counts as the
+/// end: the sample times are k * dout, exact to a few ulps, far inside 1e-9.
+inline constexpr double kEndTimeTolerance = 1e-9;
+
 template <class Solver>
 DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(double, double)>& progress) {
   const auto wall0 = std::chrono::steady_clock::now();
@@ -224,6 +228,13 @@ DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(do
     }
     record(t, k);
     if (progress) progress(t, opt.duration);
+  }
+  // Whatever the loop did, a run that did not reach its end time is not complete (an output grid
+  // that rounds to nothing, a step lost in the time's rounding).
+  if (out.completed && !(out.t.back() >= opt.duration * (1.0 - kEndTimeTolerance))) {
+    out.completed = false;
+    out.message = "reached t = " + std::to_string(out.t.back()) + " s of dynamics.duration = " +
+                  std::to_string(opt.duration) + " s";
   }
   const auto tot = solver.totals();
   out.steps = tot.steps;
