@@ -517,12 +517,12 @@ MD_SIMD_CLONES void panelBackward(int from, int to, const double* panels, const 
 enum class Kernel { kRows, kColumns, kEigen };
 
 /// The block size (unknowns per node) the AVX-512 kernel is used for: 8 (2-D). With 16 (3-D)
-/// the Eigen kernel was faster (see block_lu_avx512.hpp's header).
+/// it gains at most about 10 % (see block_lu_avx512.hpp's header), below the 15 % rule.
 constexpr int kColumnKernelBlock = 8;
 
 /// The kernel of this build and processor for blocks of `block` unknowns: AVX-512 when it is compiled in and the processor has
 /// AVX-512F (a test of the processor model that the runtime library fills in at start-up), else
-/// Eigen, or the one the build option MD_BLOCK_KERNEL chose. The environment variable
+/// the row kernel, or the one the build option MD_BLOCK_KERNEL chose. The environment variable
 /// MD_BLOCK_KERNEL=eigen or =portable chooses another at run time (tests and benchmarks of the
 /// kernels on one build); anything else in it is ignored.
 Kernel blockKernel(int block) {
@@ -531,12 +531,16 @@ Kernel blockKernel(int block) {
     if (std::strcmp(env, "portable") == 0) return Kernel::kRows;
   }
 #if defined(MD_BLOCK_KERNEL_PORTABLE)
+  (void)block;
   return Kernel::kRows;
-#elif MD_AVX512_KERNEL
-  return block == kColumnKernelBlock && __builtin_cpu_supports("avx512f") ? Kernel::kColumns : Kernel::kEigen;
-#else
+#elif defined(MD_BLOCK_KERNEL_EIGEN)
   (void)block;
   return Kernel::kEigen;
+#elif MD_AVX512_KERNEL
+  return block == kColumnKernelBlock && __builtin_cpu_supports("avx512f") ? Kernel::kColumns : Kernel::kRows;
+#else
+  (void)block;
+  return Kernel::kRows;  // the row kernel: faster than the Eigen one here (block_lu_avx512.hpp's figures)
 #endif
 }
 
