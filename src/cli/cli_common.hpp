@@ -78,6 +78,9 @@ bool gnuplotAvailable();
 // ---------------------------------------------------------------------------------------------
 // Output files
 
+/// Create the output directory `dir` (and its parents); false, with the message on err, when that fails.
+bool makeOutputDir(const fs::path& dir, std::ostream& err);
+
 /// Write `what` to `path` with `writer`; false (and a message on err) on any I/O failure.
 template <class Writer>
 bool writeFile(const fs::path& path, Writer writer, std::ostream& err) {

@@ -80,6 +80,8 @@ bool loadSystem(const std::string& path, core::SystemProblem& s, std::ostream& e
   }
 }
 
+}  // namespace
+
 /// Create the output directory; false (and the message on err) when that fails.
 bool makeOutputDir(const fs::path& dir, std::ostream& err) {
   std::error_code ec;
@@ -90,8 +92,6 @@ bool makeOutputDir(const fs::path& dir, std::ostream& err) {
   }
   return true;
 }
-
-}  // namespace
 
 int runSystemStatic(const std::string& path, bool want_table, std::size_t stride, double spacing_scale,
                     const std::string& out_dir, std::ostream& out, std::ostream& err) {

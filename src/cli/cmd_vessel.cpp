@@ -50,16 +50,6 @@ bool loadVesselFile(const ParsedArgs& args, core::SystemProblem& s, std::ostream
   return true;
 }
 
-bool makeDir(const std::string& dir, std::ostream& err) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir, ec)) {
-    err << kProg << ": error: cannot create output directory '" << dir << "'\n";
-    return false;
-  }
-  return true;
-}
-
 /// Runs gnuplot on `script` (written to dir/name.gp); false with the log on err.
 bool plot(const fs::path& dir, const std::string& name, const std::string& script, std::ostream& err) {
   if (!gnuplotAvailable()) {
@@ -119,7 +109,7 @@ int runStiffness(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
   out << "  units: N/m (force by translation), N/rad (force by rotation), N m/m, N m/rad\n";
   if (args.has("out")) {
     const std::string dir = args.values.at("out");
-    if (!makeDir(dir, err)) return kExitIo;
+    if (!makeOutputDir(dir, err)) return kExitIo;
     const fs::path csv = fs::path(dir) / "stiffness.csv";
     if (!writeFile(csv,
                    [&](std::ostream& f) {
@@ -175,7 +165,7 @@ int runOffset(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
   }
   if (args.has("out")) {
     const std::string dir = args.values.at("out");
-    if (!makeDir(dir, err)) return kExitIo;
+    if (!makeOutputDir(dir, err)) return kExitIo;
     const fs::path csv = fs::path(dir) / "offset.csv";
     if (!writeFile(csv,
                    [&](std::ostream& f) {
@@ -284,7 +274,7 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
   out << "  solver         " << run->dynamics().lineSteps() << " line steps\n";
   out << "  wall time      " << fmtNum("%.3g", wall) << " s, real-time factor " << fmtNum("%.3g", simulated / wall) << "\n";
   if (!out_dir.empty()) {
-    if (!makeDir(out_dir, err)) return kExitIo;
+    if (!makeOutputDir(out_dir, err)) return kExitIo;
     const fs::path ts = fs::path(out_dir) / "vessel_timeseries.csv";
     if (!writeFile(ts,
                    [&](std::ostream& f) {

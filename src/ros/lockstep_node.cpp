@@ -12,6 +12,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "mooring_dynamics/ros/converter.hpp"
+#include "mooring_dynamics/ros/params.hpp"
 #include "mooring_dynamics/ros/static_node.hpp"
 
 namespace mooring_dynamics {
@@ -20,17 +21,6 @@ namespace ros_bridge {
 namespace {
 
 constexpr double kWarnPeriod = 5.0;  // [s] throttle of repeated warnings
-
-/// Reads a double parameter; `ok(v)` false throws naming the parameter, its value and `constraint`.
-double doubleParam(const ros::NodeHandle& pnh, const std::string& name, double def,
-                   const std::function<bool(double)>& ok, const std::string& constraint) {
-  double v = def;
-  if (pnh.hasParam(name) && !pnh.getParam(name, v))
-    throw std::runtime_error("parameter " + pnh.resolveName(name) + ": must be a number");
-  if (!(std::isfinite(v) && ok(v)))
-    throw std::runtime_error("parameter " + pnh.resolveName(name) + " = " + formatNumber(v) + ": " + constraint);
-  return v;
-}
 
 }  // namespace
 

@@ -15,6 +15,7 @@
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/numerics/thread_pool.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
+#include "mooring_dynamics/ros/params.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {
@@ -22,25 +23,6 @@ namespace ros_bridge {
 namespace {
 
 constexpr double kWarnPeriod = 5.0;  // [s] throttle of repeated warnings
-
-/// Reads a double parameter; `ok(v)` false throws naming the parameter, its value and `constraint`.
-double doubleParam(const ros::NodeHandle& pnh, const std::string& name, double def,
-                   const std::function<bool(double)>& ok, const std::string& constraint) {
-  double v = def;
-  if (pnh.hasParam(name) && !pnh.getParam(name, v))
-    throw std::runtime_error("parameter " + pnh.resolveName(name) + ": must be a number");
-  if (!(std::isfinite(v) && ok(v)))
-    throw std::runtime_error("parameter " + pnh.resolveName(name) + " = " + formatNumber(v) + ": " + constraint);
-  return v;
-}
-
-int intParam(const ros::NodeHandle& pnh, const std::string& name, int def, int min, const std::string& constraint) {
-  int v = def;
-  if (pnh.hasParam(name) && !pnh.getParam(name, v))
-    throw std::runtime_error("parameter " + pnh.resolveName(name) + ": must be an integer (" + constraint + ")");
-  if (v < min) throw std::runtime_error("parameter " + pnh.resolveName(name) + " = " + std::to_string(v) + ": " + constraint);
-  return v;
-}
 
 /// A line name as one level of a topic name: characters other than letters, digits and '_' become '_'.
 std::string topicName(const std::string& name) {
