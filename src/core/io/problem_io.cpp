@@ -490,6 +490,7 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   readTop(top.required("top"), pb.top, body_index, body_names);
   if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), pb.static_options);
   if (presentAndNotNull(top, "dynamics")) readDynamics(top.at("dynamics"), pb.dynamics, pb.totalLength());
+  pb.dynamics.gnss.track = relativeTo(pb.dynamics.gnss.track, base_dir);
   if (presentAndNotNull(top, "limits")) readLimits(top.at("limits"), pb.limits);
 
   std::string msg = pb.static_options.validate();
@@ -584,6 +585,11 @@ YAML::Node parseYaml(const std::string& yaml_text) {
     throw ProblemError(msg + ": " + e.msg);
   }
   return root;
+}
+
+std::string relativeTo(const std::string& path, const std::string& base_dir) {
+  const std::filesystem::path p(path);
+  return path.empty() || p.is_absolute() || base_dir.empty() ? path : (std::filesystem::path(base_dir) / p).string();
 }
 
 std::string readFileText(const std::string& path) {
