@@ -38,6 +38,7 @@ void gnssTopTable(core::Problem& problem, std::ostream& out) {
   core::GnssTrack track(dyn.gnss, start, Eigen::Vector2d(problem.top.tow_vx, problem.top.tow_vy));
   const auto poses = follow(track, dyn.gnss.track, out);
   dyn.top_motion.type = core::TopMotion::Type::PositionTable;
+  dyn.top_motion.prescribe_position = true;  // as the lockstep node follows its samples: no drift
   dyn.top_motion.table.clear();
   // A tow starts from its steady state at top.tow_velocity, the smoother's start: a row one second
   // before the first, on that velocity, gives the table that velocity at t = 0 (rows at t <= 0

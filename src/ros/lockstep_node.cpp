@@ -47,10 +47,11 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
   }
 
   pnh_.param<std::string>("motion_source", motion_source_, "pose");
-  if (motion_source_ != "pose" && motion_source_ != "odometry" && motion_source_ != "tf")
+  if (motion_source_ != "pose" && motion_source_ != "odometry" && motion_source_ != "tf" && motion_source_ != "gnss")
     throw std::runtime_error("parameter " + pnh_.resolveName("motion_source") + " = \"" + motion_source_ +
                              "\": must be \"pose\" (~top_pose, geometry_msgs/PoseStamped), \"odometry\" "
-                             "(~top_odom, nav_msgs/Odometry) or \"tf\" (~tf_source_frame)");
+                             "(~top_odom, nav_msgs/Odometry), \"tf\" (~tf_source_frame) or \"gnss\" (~fix, "
+                             "sensor_msgs/NavSatFix, and ~heading)");
   pnh_.param<std::string>("tf_source_frame", tf_source_frame_, "");
   if (motion_source_ == "tf" && tf_source_frame_.empty())
     throw std::runtime_error("parameter " + pnh_.resolveName("tf_source_frame") +
@@ -124,6 +125,24 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
   } else if (motion_source_ == "odometry") {
     motion_sub_ = pnh_.subscribe("top_odom", 100, &LockstepNode::onOdometry, this);
     input = motion_sub_.getTopic();
+  } else if (motion_source_ == "gnss") {
+    // The fixes drive the top (docs/problem_format.md, dynamics.gnss): the track starts at the
+    // static top, whose position the first accepted fix puts it at (datum first_fix).
+    if (!driver_->threeD())
+      throw std::runtime_error("parameter " + pnh_.resolveName("motion_source") +
+                               " = \"gnss\": a ship track moves the top in the horizontal plane; the problem needs "
+                               "model: 3d");
+    core::GnssOptions go = problem_.dynamics.gnss;
+    go.enabled = true;
+    core::RigidPose start;
+    start.position = Eigen::Vector3d(driver_->staticTopX(), driver_->staticTopY(), driver_->staticTopZ());
+    gnss_ = std::make_unique<GnssInput>(
+        pnh_, go, start, Eigen::Vector2d::Zero(),
+        [this](const ros::Time& stamp, const core::RigidPose& p) {
+          onMotion(stamp, frame_id_, p.position.x(), p.position.y(), p.position.z(), "fix");
+        },
+        [this](const std::string& message) { reject(message); });
+    input = gnss_->topics();
   } else {
     tf_timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / poll_rate), &LockstepNode::pollTf, this);
     input = "tf " + frame_id_ + " <- " + tf_source_frame_ + " polled at " + formatNumber(poll_rate) + " Hz";
@@ -342,7 +361,10 @@ void LockstepNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   st.name = "mooring_dynamics: " + ros::this_node::getName() + " lockstep";
   st.hardware_id = problem_.name;
   st.message = s.message;
-  for (const auto& kv : s.values) {
+  std::vector<std::pair<std::string, std::string>> values(s.values.begin(), s.values.end());
+  if (gnss_)
+    for (const auto& kv : gnss_->values()) values.push_back(kv);
+  for (const auto& kv : values) {
     diagnostic_msgs::KeyValue k;
     k.key = kv.first;
     k.value = kv.second;

@@ -139,7 +139,7 @@ TEST_F(CliGnss, LineTopFollowsTheFixesAndAJumpIsRejected) {
   // The same line on the position table the track means: 0.5 m/s north from the static top,
   // without the rejected row.
   std::ostringstream rows_yaml;
-  rows_yaml << "dynamics: {dt: 0.5, duration: 8, top_motion: {type: position_table, table: [";
+  rows_yaml << "dynamics: {dt: 0.5, duration: 8, top_motion: {type: position_table, prescribe: position, table: [";
   for (int k = 0; k <= 8; ++k)
     if (k != 4) rows_yaml << (k ? ", " : "") << "[" << k << ", 60, " << 0.5 * k << ", 0]";
   rows_yaml << "]}}\n";

@@ -33,6 +33,7 @@
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/SolveStatic.h"
 #include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/ros/gnss_input.hpp"
 #include "mooring_dynamics/ros/lockstep.hpp"
 #include "mooring_dynamics/ros/lockstep_monitor.hpp"
 #include "mooring_dynamics/ros/markers.hpp"
@@ -82,6 +83,7 @@ class LockstepNode {
   MarkerOptions marker_options_;
   std::unique_ptr<LockstepDriver> driver_;
   std::unique_ptr<LockstepMonitor> monitor_;
+  std::unique_ptr<GnssInput> gnss_;  ///< ~motion_source gnss
   ros::Publisher state_pub_, marker_pub_, wrench_pub_, diag_pub_;
   ros::Subscriber motion_sub_;
   ros::ServiceServer reset_srv_, solve_srv_;

@@ -205,13 +205,15 @@ GnssTrack::Result GnssTrack::addFix(const GnssFix& f) {
   const RigidPose level = RigidPose::fromRollPitchYaw(Eigen::Vector3d::Zero(), 0.0, 0.0, yaw);
   const Eigen::Vector2d origin = antenna - (level.orientation * options_.antenna).head<2>();
   Eigen::Vector2d smooth;
+  // The smoother runs on time from the first fix: stamps since 1970 would cost it 7 digits.
   if (!started_) {
-    smoother_.start(f.t, origin, start_velocity_);
+    t0_ = f.t;
+    smoother_.start(0.0, origin, start_velocity_);
     smooth = smoother_.position();
     // A datum at the first fix: the track is placed so that its first pose is the start's.
     if (options_.datum_from_first_fix) offset_ = start_.position.head<2>() - smooth;
   } else {
-    smooth = smoother_.update(f.t, origin);
+    smooth = smoother_.update(f.t - t0_, origin);
   }
   started_ = true;
   last_t_ = f.t;

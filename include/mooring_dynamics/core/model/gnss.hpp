@@ -140,6 +140,7 @@ class GnssTrack {
   std::unique_ptr<LocalDatum> datum_;
   TrackSmoother smoother_;
   bool started_ = false;
+  double t0_ = 0.0;      ///< the first accepted fix's stamp [s]
   double last_t_ = 0.0;
   Eigen::Vector2d last_antenna_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
