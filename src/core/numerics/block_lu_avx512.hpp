@@ -71,22 +71,23 @@ namespace columnkernel {
 template <int NB, int LEAD>
 struct ColumnLU {
   static constexpr int M = LEAD + NB, W = 2 * NB, LANES = (M + 7) / 8 * 8, G = LANES / 8;
-  static_assert(NB % 8 == 0 && LANES <= 32 && M < LANES, "slots in a 32-bit mask, a padding lane");
+  // 8 unknowns per node only (block_lu.hpp's kColumnKernelBlock; the header says why): the slots
+  // fit two vectors.
+  static_assert(NB == 8 && G == 2 && M < LANES, "8 unknowns per node: two vectors of slots, a padding lane");
   typedef std::uint32_t Slots;  // one bit per slot
 
   static MD_INLINE double* column(double* panel, int c) { return panel + static_cast<std::size_t>(c) * LANES; }
 
-  /// Whether an inner panel keeps its node j + 1 columns in registers through its NB steps
-  /// (NB G vectors: 16 of the 32 with 8 unknowns per node) instead of loading and storing each
-  /// at every step: the updates were bound by the stores (one 512-bit store per vector and
-  /// update, 184 of them per node; half-width store path on Zen 4). The same operations in the
-  /// same order, so the same bits.
-  static constexpr bool HELD = NB * G <= 16;
+  /// An inner panel keeps its node j + 1 columns in registers through its NB steps (NB G = 16
+  /// of the 32 vectors) instead of loading and storing each at every step: the updates were
+  /// bound by the stores (one 512-bit store per vector and update, 184 of them per node;
+  /// half-width store path on Zen 4). The same operations in the same order, so the same bits.
+  static constexpr bool HELD = true;
   typedef __m512d Held[HELD ? NB : 1][G];
 
-  /// Lane q of the G = 2 vectors v in every lane.
+  /// Lane q of the two vectors v in every lane.
   static MD_INLINE __m512d broadcastLane(const __m512d* v, int q) {
-    return _mm512_permutex2var_pd(v[0], _mm512_set1_epi64(q), v[G > 1 ? 1 : 0]);
+    return _mm512_permutex2var_pd(v[0], _mm512_set1_epi64(q), v[1]);
   }
   /// update() of a column held in registers, in place.
   static MD_INLINE void updateHeld(__m512d* v, int q, Slots upd, const __m512d* l) {
@@ -179,13 +180,9 @@ struct ColumnLU {
     return _mm512_set1_pd(1.0 / lane(cand, q));
   }
 
-  /// Lane q of the G vectors v (q < LANES).
+  /// Lane q of the two vectors v (q < LANES = 16).
   static MD_INLINE double lane(const __m512d* v, int q) {
-    const __m512i iq = _mm512_set1_epi64(q);
-    const __m512d lo = _mm512_permutex2var_pd(v[0], iq, v[G > 1 ? 1 : 0]);  // lanes 0 .. 15
-    if constexpr (G <= 2) return _mm512_cvtsd_f64(lo);
-    const __m512d hi = _mm512_permutex2var_pd(v[2], iq, v[G > 3 ? 3 : 2]);  // lanes 16 .. 31
-    return _mm512_cvtsd_f64(_mm512_mask_blend_pd(static_cast<__mmask8>(q >= 16 ? 0xff : 0), lo, hi));
+    return _mm512_cvtsd_f64(_mm512_permutex2var_pd(v[0], _mm512_set1_epi64(q), v[1]));
   }
 
   /// Column c of P minus l u (u: the pivot row's entry, in slot q) in the rows of upd, to out.
@@ -323,7 +320,7 @@ struct ColumnLU {
   static MD_INLINE void carry(const double* staged, const int* at_left, double* Q) {
     constexpr int first = NB / 8;  // the vectors of the carried slots
     __m512i idx[G];
-    __mmask8 valid[G], high[G];
+    __mmask8 valid[G];
     for (int g = first; g < G; ++g) {
       auto slot = [&](int e) MD_LAMBDA_INLINE {  // the source slot of lane e (scalars: the
         const int r = 8 * (g - first) + e;       // positions were just stored one by one)
@@ -331,16 +328,11 @@ struct ColumnLU {
       };
       idx[g] = _mm512_set_epi64(slot(7), slot(6), slot(5), slot(4), slot(3), slot(2), slot(1), slot(0));
       valid[g] = static_cast<__mmask8>(((1u << LEAD) - 1) >> (8 * (g - first)));
-      high[g] = _mm512_cmpge_epi64_mask(idx[g], _mm512_set1_epi64(16));
     }
     for (int c = 0; c < NB; ++c) {
       const double* const src = staged + static_cast<std::size_t>(c) * LANES;
       for (int g = first; g < G; ++g) {
-        __m512d v = _mm512_maskz_permutex2var_pd(valid[g], _mm512_loadu_pd(src), idx[g], _mm512_loadu_pd(src + 8));
-        if constexpr (G > 2)  // slots 16 .. LANES - 1 (indices 16 .. act by their low four bits)
-          v = _mm512_mask_blend_pd(high[g] & valid[g], v,
-                                   _mm512_permutex2var_pd(_mm512_loadu_pd(src + 16), idx[g],
-                                                          _mm512_loadu_pd(src + (G > 3 ? 24 : 16))));
+        const __m512d v = _mm512_maskz_permutex2var_pd(valid[g], _mm512_loadu_pd(src), idx[g], _mm512_loadu_pd(src + 8));
         _mm512_storeu_pd(column(Q, c) + 8 * g, v);
       }
     }
@@ -378,11 +370,9 @@ int factor(int n, const RowSource& in, double* panels, double* inv_diag, int* pe
       double* const Q = panel(i + 1);
       if (i + 2 < nodes) B::loadInterval(Q, in, i + 1);
       else if (part == Panels::kAll) loadTop(Q);
-      // The pivots of the last factorization as guesses (ColumnLU::panel). Only for 8 unknowns
-      // per node: with 16 the search is hidden behind the longer row updates already, and the
-      // check's extra work made the 3-D factorization slower (bench_banded BM_BlockFactor16:
-      // 240-280 us -> 290-390 us, against 40 -> 33 us for BM_BlockFactor8).
-      const int k = B::template panel<W, NB == 8>(P, NB, inv_diag + NB * i, perm + M * i, staged);
+      // The pivots of the last factorization as guesses (ColumnLU::panel): 40 -> 33 us a
+      // factorization in bench_banded BM_BlockFactor8.
+      const int k = B::template panel<W, true>(P, NB, inv_diag + NB * i, perm + M * i, staged);
       if (k != 0) return NB * i + k;
       B::carry(staged, perm + M * i + NB, Q);
     }
