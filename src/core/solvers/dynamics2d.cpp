@@ -10,7 +10,9 @@
 #include "mooring_dynamics/core/solvers/adaptive_mesh.hpp"
 #include "mooring_dynamics/core/solvers/dynamic_run.hpp"
 #include "mooring_dynamics/core/equations/dynamic_interval.hpp"
+#include "mooring_dynamics/core/equations/end_conditions.hpp"
 #include "mooring_dynamics/core/equations/equations2d_dynamic.hpp"
+#include "mooring_dynamics/core/numerics/ad_rows.hpp"
 #include "mooring_dynamics/core/numerics/fork_join.hpp"
 #include "mooring_dynamics/core/equations/mesh.hpp"
 #include "mooring_dynamics/core/numerics/newton.hpp"
@@ -27,9 +29,20 @@ namespace {
 
 using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
 using AD8 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
-constexpr int kAnchorRows = 5;
-constexpr int kTopRows = 3;
 const char* const kVarNames[N] = {"eps", "Sn", "u", "v", "phi", "Omega3", "x", "z"};
+
+/// The top's input as the end conditions take it (y = 0 in 2-D).
+TopState topState(const TopInput& in) {
+  TopState s;
+  s.force = in.force;
+  s.x = in.x;
+  s.z = in.z;
+  s.vx = in.vx;
+  s.vz = in.vz;
+  s.fx = in.fx;
+  s.fz = in.fz;
+  return s;
+}
 
 }  // namespace
 
@@ -48,6 +61,8 @@ struct DynamicSolver2D::Impl {
   DynamicOptions opt;
   std::function<TopInput(double)> top;
   StaticResult statics;
+  /// The anchor and the top (end_conditions.hpp): their rows at nodes 0 and n - 1.
+  std::unique_ptr<EndCondition2D> lower, upper;
 
   // Accepted state at time t.
   double t = 0.0;
@@ -168,15 +183,15 @@ struct DynamicSolver2D::Impl {
 class DynamicStepSystem : public NewtonSystem {
  public:
   DynamicStepSystem(const DynamicSolver2D::Impl& im, double t_new, double dt, const TopInput& top)
-      : im_(im), t_(t_new), dt_(dt), top_(top) {
-  }
+      : im_(im), t_(t_new), dt_(dt), input_(topState(top)), end_rows_(im.lower->dynamicRows()) {}
 
   int size() const override { return N * im_.nodes(); }
-  int lowerBandwidth() const override { return 12; }
-  int upperBandwidth() const override { return 10; }
+  // Interval j's rows start at end_rows_ + N j and touch nodes j, j + 1 (kl = 12, ku = 10).
+  int lowerBandwidth() const override { return end_rows_ + N - 1; }
+  int upperBandwidth() const override { return 2 * N - 1 - end_rows_; }
   // Node-by-node elimination of the same matrix (every row couples node j and j + 1 only).
   int blockSize() const override { return N; }
-  int leadingRows() const override { return kAnchorRows; }
+  int leadingRows() const override { return end_rows_; }
   double scale(int i) const override { return im_.chi[i % N]; }
   std::string describe(int i) const override {
     const std::size_t j = static_cast<std::size_t>(i / N);
@@ -221,20 +236,7 @@ class DynamicStepSystem : public NewtonSystem {
     const Eigen::VectorXd& Yp = im_.Y;
     const Eigen::VectorXd& Ydp = im_.Yd;
 
-    // Anchor (eq. 34): no motion, moment free, fixed position.
-    R[0] = Y[U];
-    R[1] = Y[V];
-    R[2] = Y[OMEGA];
-    R[3] = Y[X] - im_.problem.anchor_x;
-    R[4] = Y[Z] - im_.problem.anchor_z;
-    if (J) {
-      J->setZeroRows(0, kAnchorRows);
-      J->at(0, U) = 1.0;
-      J->at(1, V) = 1.0;
-      J->at(2, OMEGA) = 1.0;
-      J->at(3, X) = 1.0;
-      J->at(4, Z) = 1.0;
-    }
+    endRows(*im_.lower, 0, 0, Y, R, J);  // the anchor (eq. 34)
 
     // The line in two halves, nodes [0, m) and [m, n), as the Newton matrix's two-ended
     // elimination splits it (both on im_.fork when there is one: each thread then assembles
@@ -277,7 +279,7 @@ class DynamicStepSystem : public NewtonSystem {
       long first_material = -1;
       for (int j = j0; j < j1; ++j) {
         const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
-        const int row = kAnchorRows + N * j;
+        const int row = end_rows_ + N * j;
         const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
         if (iv.h > 0.0) {
           // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp), from the terms of
@@ -329,50 +331,18 @@ class DynamicStepSystem : public NewtonSystem {
       }
     };
     sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.interval_split, n - 1, intervals);
-    topRows(Y, R, J);
+    endRows(*im_.upper, end_rows_ + N * (n - 1), N * (n - 1), Y, R, J);  // the top (eq. 34)
   }
 
-  /// The top's rows: moment free, plus prescribed velocity (eq. 34), position or force.
-  void topRows(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) const {
-    const int n = im_.nodes();
-    const int top = N * (n - 1);
-    const int row = kAnchorRows + N * (n - 1);
-    AD8 y[N];
-    for (int k = 0; k < N; ++k) y[k] = AD8(Y[top + k], N, k);
-    AD8 r[kTopRows];
-    if (J) J->setZeroRows(row, kTopRows);
-    r[0] = y[OMEGA];
-    if (top_.force) {
-      AD8 Fx, Fz;
-      internalForce(im_.mat(n - 1), y, Fx, Fz);
-      r[1] = Fx - top_.fx;
-      r[2] = Fz - top_.fz;
-    } else if (im_.opt.top_motion.prescribe_position) {
-      // Velocity of eq. 34 with the position error fed back over a few steps: the top's
-      // position is a constraint on the integral of the line's shape from the anchor, which the
-      // generalized-alpha schemes with rho_inf > 0 do not damp when imposed directly (it blew up
-      // within a second, test_dynamics2d); fed back through the velocity it decays with
-      // time constant kPositionFeedbackSteps * dt (the BASE step: a cut step must not raise the
-      // gain, or an offset becomes a huge velocity) and the drift of the plain velocity
-      // condition vanishes.
-      constexpr double kPositionFeedbackSteps = 5.0;
-      const double kappa = 1.0 / (kPositionFeedbackSteps * im_.opt.dt);
-      AD8 Vx, Vz;
-      globalVelocity(y, Vx, Vz);
-      r[1] = Vx - top_.vx - kappa * (top_.x - y[X]);
-      r[2] = Vz - top_.vz - kappa * (top_.z - y[Z]);
-    } else {
-      AD8 Vx, Vz;
-      globalVelocity(y, Vx, Vz);
-      r[1] = Vx - top_.vx;
-      r[2] = Vz - top_.vz;
-    }
-    for (int q = 0; q < kTopRows; ++q) {
-      R[row + q] = r[q].value();
-      if (J)
-        for (int k = 0; k < N; ++k)
-          if (r[q].derivatives()[k] != 0.0) J->at(row + q, top + k) = r[q].derivatives()[k];
-    }
+  /// The rows of an end (end_conditions.hpp) at the node whose unknowns start at col0, from row0.
+  void endRows(const EndCondition2D& end, int row0, int col0, const Eigen::VectorXd& Y, Eigen::VectorXd& R,
+               BandedMatrix* J) const {
+    const int rows = end.dynamicRows();
+    AD8 y[N], r[kMaxEndRows];
+    for (int k = 0; k < N; ++k) y[k] = AD8(Y[col0 + k], N, k);
+    if (J) J->setZeroRows(row0, rows);
+    end.dynamicResidual(input_, y, r);
+    scatter(r, rows, row0, col0, N, R, J);
   }
 
   /// Rows r[0..7] of junction interval j at iterate Y, in scalar type S (AD16 for the
@@ -441,7 +411,8 @@ class DynamicStepSystem : public NewtonSystem {
  private:
   const DynamicSolver2D::Impl& im_;
   double t_, dt_;
-  TopInput top_;
+  TopState input_;   ///< the top's prescribed motion or force at t_
+  int end_rows_;     ///< rows of the anchor, before the intervals'
   mutable std::vector<Water> water_;
   std::vector<double> c_, s_;     ///< cos, sin of phi at the current iterate
   Eigen::VectorXd ydw_;           ///< weighted rates (eq. 30) at the current iterate
@@ -492,6 +463,8 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   if (!im.statics.summary.converged)
     throw std::runtime_error("the static solution that starts the dynamic run did not converge: " +
                              im.statics.summary.message);
+  im.lower = makeLowerEnd2D(im.problem);
+  im.upper = makeUpperEnd2D(im.problem, im.mat(im.nodes() - 1));
   if (problem.environment.waves.type != WaveSpec::Type::None)
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
   im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
