@@ -229,109 +229,141 @@ class DynamicStepSystem : public NewtonSystem {
 
   void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override {
     const int n = im_.nodes();
-    const GeneralizedAlpha& ga = im_.ga;
-    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
-    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
     R.resize(size());
-    const Eigen::VectorXd& Yp = im_.Y;
-    const Eigen::VectorXd& Ydp = im_.Yd;
-
     endRows(*im_.lower, 0, 0, Y, R, J);  // the anchor (eq. 34)
-
     // The line in two halves, nodes [0, m) and [m, n), as the Newton matrix's two-ended
     // elimination splits it (both on im_.fork when there is one: each thread then assembles
     // the rows it eliminates).
     const int m = BandedMatrix::meetingNode(n);
+    nodeValues(Y, m);
+    intervalRows(Y, R, J, m);
+    endRows(*im_.upper, end_rows_ + N * (n - 1), N * (n - 1), Y, R, J);  // the top (eq. 34)
+  }
+
+  /// alpha_m, alpha_k of the scheme and the rate of eq. 26, Yd = c1 (Y - Yp) - c0 Ydp.
+  AlphaWeights weights() const {
+    const GeneralizedAlpha& ga = im_.ga;
+    const double g = ga.gamma;
+    return {ga.alpha_m, ga.alpha_k, 1.0 / (g * dt_), (1.0 - g) / g};
+  }
+
+  /// Water at every node, weighted rates (eq. 30) and cos, sin of the inclination at iterate Y.
+  /// Shared out as the threads go (sharedHalves), from the static shape's guess: every node's
+  /// values are its own, whichever thread computes them.
+  void nodeValues(const Eigen::VectorXd& Y, int m) {
+    const int n = im_.nodes();
+    const AlphaWeights w = weights();
+    const double am = w.am, c1 = w.c1, c0 = w.c0;
+    const Eigen::VectorXd& Yp = im_.Y;
+    const Eigen::VectorXd& Ydp = im_.Yd;
     im_.wave_cache.setTime(t_);
     water_.resize(static_cast<std::size_t>(n));
     ydw_.resize(Y.size());
     c_.resize(static_cast<std::size_t>(n));
     s_.resize(static_cast<std::size_t>(n));
-    // Water at every node, weighted rates (eq. 30) and cos, sin of the inclination.
-    auto waterValues = [&](int j0, int j1) {
+    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.water_split, n, [&](int j0, int j1, bool) {
       for (int j = j0; j < j1; ++j) water_[static_cast<std::size_t>(j)] = im_.waterAt(j, Y[N * j + X], Y[N * j + Z]);
-    };
-    auto nodeValues = [&](int j0, int j1) {
       for (int j = j0; j < j1; ++j) {
         const std::size_t a = static_cast<std::size_t>(j);
         for (int k = N * j; k < N * (j + 1); ++k)
           ydw_[k] = (1.0 - am) * (c1 * (Y[k] - Yp[k]) - c0 * Ydp[k]) + am * Ydp[k];
         sinCos(Y[N * j + PHI], s_[a], c_[a]);
       }
-    };
-    // Shared out as the threads go (sharedHalves), from the static shape's guess: every node's
-    // values are its own, whichever thread computes them.
-    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.water_split, n, [&](int j0, int j1, bool) {
-      waterValues(j0, j1);
-      nodeValues(j0, j1);
     });
+  }
 
-    const StepWeights wts{ak, (1.0 - am) * c1};
-    std::vector<NodeTerms>& terms = im_.node_terms;
-    terms.resize(static_cast<std::size_t>(n));
+  /// Every interval's rows (eq. 30 on eq. 11), shared out from interval_split (sharedHalves).
+  void intervalRows(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J, int m) {
+    const int n = im_.nodes();
+    im_.node_terms.resize(static_cast<std::size_t>(n));
     terms_material_.assign(static_cast<std::size_t>(n), -1);  // none computed yet
-    // Intervals [j0, j1), a piece of sharedHalves: the terms of node j0 > 0 are also the piece
-    // below's (its last interval's upper node), so a piece computes them in a place of its own,
-    // unless it continues its thread's previous piece, which left them in `terms`.
-    auto intervals = [&](int j0, int j1, bool continued) {
-      double Jl[N][2 * N];
-      NodeTerms first_terms;
-      long first_material = -1;
-      for (int j = j0; j < j1; ++j) {
-        const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
-        const int row = end_rows_ + N * j;
-        const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
-        if (iv.h > 0.0) {
-          // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp), from the terms of
-          // its nodes, each computed once for the intervals of one material it belongs to.
-          const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
-          const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
-          const Material& m_iv = im_.problem.materials[iv.material];
-          auto termsOf = [&](std::size_t node, const NodeView& now) -> const NodeTerms& {
-            const bool own = j0 > 0 && !continued && node == static_cast<std::size_t>(j0);
-            long& material = own ? first_material : terms_material_[node];
-            NodeTerms& t = own ? first_terms : terms[node];
-            if (material != static_cast<long>(iv.material)) {
-              const NodeView prev{Yp.data() + N * node, im_.cos_phi[node], im_.sin_phi[node], &im_.water[node]};
-              nodeStepTerms(im_.problem.environment, m_iv, now, prev, ydw_.data() + N * node, wts, J != nullptr, t);
-              material = static_cast<long>(iv.material);
-            }
-            return t;
-          };
-          const NodeTerms& ta = termsOf(a, na);
-          const NodeTerms& tb = termsOf(b, nb);
-          // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
-          double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
-          intervalStepRows(m_iv, iv.h, na, nb, ta, tb, wts, im_.S.data() + N * j, R.data() + row, J ? Jrows : nullptr);
-          if (J && Jrows == Jl)
-            for (int q = 0; q < N; ++q)
-              for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
-          continue;
-        }
-        // Junction (pin) rows: few, left to automatic differentiation; in double when only the
-        // residual is asked for.
-        if (J) {
-          AD16 r[N];
-          junctionRows(j, iv, Y, c1, c0, r);
-          // With the block structure the 8 rows of 16 entries are written whole (a zero as +0,
-          // as clearing the rows would leave it), else the non-zero entries after clearing.
-          double* const rows = J->blockRow(row);
-          if (!rows) J->setZeroRows(row, N);
-          for (int q = 0; q < N; ++q) {
-            R[row + q] = r[q].value();
-            for (int k = 0; k < 2 * N; ++k) {
-              const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
-              if (rows) rows[2 * N * q + k] = d != 0.0 ? d : 0.0;
-              else if (d != 0.0) J->at(row + q, N * j + k) = d;
-            }
-          }
-        } else {
-          junctionRows(j, iv, Y, c1, c0, R.data() + row);
-        }
+    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.interval_split, n - 1,
+                 [&](int j0, int j1, bool continued) { intervalPiece(Y, R, J, j0, j1, continued); });
+  }
+
+  /// The terms of node j0 of a piece of sharedHalves, when j0 > 0: also the piece below's (its last
+  /// interval's upper node), so a piece computes them in a place of its own, unless it continues
+  /// its thread's previous piece, which left them in im_.node_terms.
+  struct PieceTerms {
+    int own_node = -1;  ///< the node whose terms are the piece's own (-1: none)
+    NodeTerms terms;
+    long material = -1;  ///< the material they were computed with (-1: none)
+  };
+
+  /// Intervals [j0, j1), a piece of sharedHalves.
+  void intervalPiece(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1, bool continued) {
+    const AlphaWeights w = weights();
+    const StepWeights wts{w.ak, (1.0 - w.am) * w.c1};
+    PieceTerms own;
+    own.own_node = j0 > 0 && !continued ? j0 : -1;
+    double Jl[N][2 * N];
+    for (int j = j0; j < j1; ++j) {
+      const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
+      if (iv.h > 0.0)
+        cableRows(j, iv, Y, R, J, wts, own, Jl);
+      else
+        junctionRowsInto(j, iv, Y, R, J, w);
+    }
+  }
+
+  /// The terms of `node` (nodeStepTerms) for interval iv, computed once for the intervals of one
+  /// material the node belongs to.
+  const NodeTerms& termsOf(std::size_t node, const NodeView& now, const MeshInterval& iv, const StepWeights& wts,
+                           bool jacobian, PieceTerms& own) {
+    const bool is_own = node == static_cast<std::size_t>(own.own_node);
+    long& material = is_own ? own.material : terms_material_[node];
+    NodeTerms& t = is_own ? own.terms : im_.node_terms[node];
+    if (material != static_cast<long>(iv.material)) {
+      const NodeView prev{im_.Y.data() + N * node, im_.cos_phi[node], im_.sin_phi[node], &im_.water[node]};
+      nodeStepTerms(im_.problem.environment, im_.problem.materials[iv.material], now, prev, ydw_.data() + N * node,
+                    wts, jacobian, t);
+      material = static_cast<long>(iv.material);
+    }
+    return t;
+  }
+
+  /// Interval j's rows with the hand-coded Jacobian (dynamic_interval.hpp), from the terms of its
+  /// nodes; Jl: scratch rows when J has no block structure.
+  void cableRows(int j, const MeshInterval& iv, const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J,
+                 const StepWeights& wts, PieceTerms& own, double (&Jl)[N][2 * N]) {
+    const int row = end_rows_ + N * j;
+    const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+    const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
+    const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
+    const NodeTerms& ta = termsOf(a, na, iv, wts, J != nullptr, own);
+    const NodeTerms& tb = termsOf(b, nb, iv, wts, J != nullptr, own);
+    // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
+    double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
+    intervalStepRows(im_.problem.materials[iv.material], iv.h, na, nb, ta, tb, wts, im_.S.data() + N * j,
+                     R.data() + row, J ? Jrows : nullptr);
+    if (J && Jrows == Jl)
+      for (int q = 0; q < N; ++q)
+        for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
+  }
+
+  /// Junction (pin) rows of interval j: few, left to automatic differentiation; in double when
+  /// only the residual is asked for.
+  void junctionRowsInto(int j, const MeshInterval& iv, const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J,
+                        const AlphaWeights& w) const {
+    const int row = end_rows_ + N * j;
+    if (!J) {
+      junctionRows(j, iv, Y, w.c1, w.c0, R.data() + row);
+      return;
+    }
+    AD16 r[N];
+    junctionRows(j, iv, Y, w.c1, w.c0, r);
+    // With the block structure the 8 rows of 16 entries are written whole (a zero as +0, as
+    // clearing the rows would leave it), else the non-zero entries after clearing.
+    double* const rows = J->blockRow(row);
+    if (!rows) J->setZeroRows(row, N);
+    for (int q = 0; q < N; ++q) {
+      R[row + q] = r[q].value();
+      for (int k = 0; k < 2 * N; ++k) {
+        const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
+        if (rows) rows[2 * N * q + k] = d != 0.0 ? d : 0.0;
+        else if (d != 0.0) J->at(row + q, N * j + k) = d;
       }
-    };
-    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.interval_split, n - 1, intervals);
-    endRows(*im_.upper, end_rows_ + N * (n - 1), N * (n - 1), Y, R, J);  // the top (eq. 34)
+    }
   }
 
   /// The rows of an end (end_conditions.hpp) at the node whose unknowns start at col0, from row0.
@@ -442,13 +474,11 @@ Eigen::VectorXd stateFromStatic(const StaticResult& r) {
 
 }  // namespace
 
-DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
-  Impl& im = *impl_;
-  const std::string err = problem.validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  im.problem = problem;
-  im.opt = problem.dynamics;
-  im.ga = problem.dynamics.scheme;
+namespace {
+
+/// The static solution the run starts from (section 3: on the adaptive mesh of eq. 22 when the
+/// options ask), into im.mesh and im.statics.
+void solveStart(DynamicSolver2D::Impl& im, const Problem& problem) {
   // The dynamic equations have no static cap (eq. 35 caps statics only): start from the
   // equilibrium of the same seabed model so that the start is at rest.
   Problem start = problem;
@@ -463,18 +493,11 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   if (!im.statics.summary.converged)
     throw std::runtime_error("the static solution that starts the dynamic run did not converge: " +
                              im.statics.summary.message);
-  im.lower = makeLowerEnd2D(im.problem);
-  im.upper = makeUpperEnd2D(im.problem, im.mat(im.nodes() - 1));
-  if (problem.environment.waves.type != WaveSpec::Type::None)
-    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
-  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
-  im.current = CurrentProfile(problem.environment.current);
-  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
-    im.fork = std::make_unique<ForkJoin>();
-    im.newton_matrix.setParallel(im.fork.get());
-  }
+}
 
-  // Top motion: the 3-D source projected on the x-z plane, started at the static top (y = 0).
+/// The top motion of the problem file: the 3-D source projected on the x-z plane, started at
+/// the static top (y = 0).
+void setTopMotion(DynamicSolver2D::Impl& im, const Problem& problem) {
   const NodeState& topNode = im.statics.nodes.back();
   const TopMotion& tm = problem.dynamics.top_motion;
   constexpr double kStartMismatch = 0.01;  // [m] a position table must start where statics put the top
@@ -493,12 +516,10 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
     in.fz = s.fz;
     return in;
   };
+}
 
-  im.t = 0.0;
-  im.Y = stateFromStatic(im.statics);
-  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
-  im.waterField(im.Y, 0.0, im.water);
-  im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
+/// Where the two threads are expected to meet in the node values and in the interval rows.
+void balanceThreads(DynamicSolver2D::Impl& im) {
   {
     // In the units of one component's sum (measured on A.2, one thread): a node's water without
     // the sum (the current table's look-ups, three then, the cache's bookkeeping), and its rates and
@@ -520,8 +541,10 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
     for (const MeshInterval& iv : im.mesh.intervals) cost.push_back(iv.h > 0.0 ? 1.0 : kJunctionWork);
     im.interval_split = balancedSplit(cost);
   }
+}
 
-  // Error scales chi_m of eq. 39.
+/// Error scales chi_m of eq. 39.
+void setErrorScales(DynamicSolver2D::Impl& im, const Problem& problem) {
   double Tc = 1.0, stiffest = 0.0;
   for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
   for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
@@ -531,6 +554,39 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   im.chi[PHI] = 1.0;            // [rad]
   im.chi[OMEGA] = 1.0 / std::max(im.mesh.minSpacing(), 1e-3);
   im.chi[X] = im.chi[Z] = 1.0;  // [m]
+}
+
+}  // namespace
+
+DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  const std::string err = problem.validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  im.problem = problem;
+  im.opt = problem.dynamics;
+  im.ga = problem.dynamics.scheme;
+  solveStart(im, problem);
+  im.lower = makeLowerEnd2D(im.problem);
+  im.upper = makeUpperEnd2D(im.problem, im.mat(im.nodes() - 1));
+  if (problem.environment.waves.type != WaveSpec::Type::None)
+    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
+  im.current = CurrentProfile(problem.environment.current);
+  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
+    im.fork = std::make_unique<ForkJoin>();
+    im.newton_matrix.setParallel(im.fork.get());
+  }
+  setTopMotion(im, problem);
+
+  // The start: the static shape at rest, with its water and spatial rows (the first step's
+  // previous level).
+  im.t = 0.0;
+  im.Y = stateFromStatic(im.statics);
+  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
+  im.waterField(im.Y, 0.0, im.water);
+  im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
+  balanceThreads(im);
+  setErrorScales(im, problem);
 }
 
 DynamicSolver2D::~DynamicSolver2D() = default;

@@ -274,36 +274,28 @@ class DynamicStepSystem3D : public NewtonSystem {
 
 // ------------------------------------------------------------------------------------------------
 
-DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
-  Impl& im = *impl_;
-  const std::string err = problem.validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  im.problem = problem;
-  im.opt = problem.dynamics;
-  im.ga = problem.dynamics.scheme;
-  im.mesh = buildMesh(problem);
-  // A towed line starts from the steady tow at the tow point's initial velocity (section 7.1:
-  // "steady tow, then the manoeuvre"): statics in the frame moving with it, then every node given
-  // that velocity, which is a steady state of the dynamic equations.
-  // A drifter starts from its steady drift: the statics find the drift velocity V_d, and every
-  // node moves at it.
-  const bool drifter = isDrifter(problem);
-  const bool towed = problem.lower_end == Problem::LowerEnd::Free && !drifter;
-  Problem start = problem;
-  double V0[3] = {0.0, 0.0, 0.0};
-  if (towed) {
-    const TopState s0 = makeTopMotion(problem.dynamics.top_motion, problem.top.x, problem.top.y, problem.top.z,
-                                      nullptr)(0.0);
-    constexpr double kVelocityMismatch = 1e-6;  // [m/s]
-    const bool given = problem.top.tow_vx != 0.0 || problem.top.tow_vy != 0.0;
-    if (given && std::hypot(problem.top.tow_vx - s0.vx, problem.top.tow_vy - s0.vy) > kVelocityMismatch)
-      throw std::invalid_argument("top.tow_velocity = (" + std::to_string(problem.top.tow_vx) + ", " +
-                                  std::to_string(problem.top.tow_vy) + ") m/s: differs from the top motion's velocity at "
-                                  "t = 0, (" + std::to_string(s0.vx) + ", " + std::to_string(s0.vy) +
-                                  ") m/s; leave it out to start from the motion's");
-    start.top.tow_vx = V0[0] = s0.vx;
-    start.top.tow_vy = V0[1] = s0.vy;
-  }
+namespace {
+
+/// A towed line starts from the steady tow at the tow point's initial velocity (section 7.1:
+/// "steady tow, then the manoeuvre"): statics in the frame moving with it (start.top.tow_v),
+/// then every node given that velocity V0, which is a steady state of the dynamic equations.
+void steadyTowStart(const Problem& problem, Problem& start, double* V0) {
+  const TopState s0 = makeTopMotion(problem.dynamics.top_motion, problem.top.x, problem.top.y, problem.top.z,
+                                    nullptr)(0.0);
+  constexpr double kVelocityMismatch = 1e-6;  // [m/s]
+  const bool given = problem.top.tow_vx != 0.0 || problem.top.tow_vy != 0.0;
+  if (given && std::hypot(problem.top.tow_vx - s0.vx, problem.top.tow_vy - s0.vy) > kVelocityMismatch)
+    throw std::invalid_argument("top.tow_velocity = (" + std::to_string(problem.top.tow_vx) + ", " +
+                                std::to_string(problem.top.tow_vy) + ") m/s: differs from the top motion's velocity at "
+                                "t = 0, (" + std::to_string(s0.vx) + ", " + std::to_string(s0.vy) +
+                                ") m/s; leave it out to start from the motion's");
+  start.top.tow_vx = V0[0] = s0.vx;
+  start.top.tow_vy = V0[1] = s0.vy;
+}
+
+/// The static solution the run starts from, on im.mesh (section 3: the adaptive mesh of eq. 22
+/// when the options ask).
+StaticState3D solveStart(DynamicSolver3D::Impl& im, const Problem& problem, const Problem& start) {
   StaticState3D st = solveStatic3DOnMesh(start, im.mesh, start.static_options);
   if (st.result.summary.converged && problem.dynamics.adaptive_mesh) {
     // Section 3: redistribute the nodes by eq. 22. The curvature fed to eq. 21 is the magnitude
@@ -318,6 +310,71 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   if (!st.result.summary.converged)
     throw std::runtime_error("the 3-D static solution that starts the dynamic run did not converge: " +
                              st.result.summary.message);
+  return st;
+}
+
+/// The top motion of the problem file, started at the static top.
+void setTopMotion(DynamicSolver3D::Impl& im, const Problem& problem) {
+  const NodeState& topNode = im.statics.nodes.back();
+  const TopMotion& tm = problem.dynamics.top_motion;
+  constexpr double kStartMismatch = 0.01;  // [m] a position table must start where statics put the top
+  const std::string bad = topMotionStartError(tm, topNode.x, topNode.y, topNode.z, kStartMismatch);
+  if (!bad.empty()) throw std::invalid_argument(bad);
+  im.top = makeTopMotion(tm, topNode.x, topNode.y, topNode.z, &im.waves);
+}
+
+/// The start state from the statics Y: at rest, or every node moving at V0 (a tow or a drift).
+void startState(DynamicSolver3D::Impl& im, const Eigen::VectorXd& Y, bool moving, bool drifter, const double* V0) {
+  im.t = 0.0;
+  im.Y = Y;
+  if (moving) {
+    for (int j = 0; j < im.nodes(); ++j) {
+      double* y = im.Y.data() + N * j;
+      double R[9];
+      quat::matrix(y + Q0, R);
+      quat::toLocal(R, V0, y + U1);
+    }
+  }
+  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
+  if (drifter) {
+    // The drifter's top kinematics integrate the position rate: start it at V_d (every node
+    // moves so), else the first step loses (1 - gamma) dt V_d of the drift.
+    for (int j = 0; j < im.nodes(); ++j)
+      for (int i = 0; i < 3; ++i) im.Yd[N * j + X + i] = V0[i];
+  }
+}
+
+/// Error scales chi_m of eq. 39, as in 2-D.
+void setErrorScales(DynamicSolver3D::Impl& im, const Problem& problem) {
+  double Tc = 1.0, stiffest = 0.0;
+  for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
+  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
+  im.chi[EPS] = Tc / stiffest;
+  im.chi[S2] = im.chi[S3] = Tc;
+  im.chi[U1] = im.chi[U2] = im.chi[U3] = 1.0;  // [m/s]
+  im.chi[O1] = im.chi[O2] = im.chi[O3] = 1.0 / std::max(im.mesh.minSpacing(), 1e-3);
+  im.chi[Q0] = im.chi[Q1] = im.chi[Q2] = im.chi[Q3] = 1.0;
+  im.chi[X] = im.chi[eq3d::Y] = im.chi[Z] = 1.0;  // [m]
+}
+
+}  // namespace
+
+DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  const std::string err = problem.validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  im.problem = problem;
+  im.opt = problem.dynamics;
+  im.ga = problem.dynamics.scheme;
+  im.mesh = buildMesh(problem);
+  // A towed line starts from its steady tow, a drifter from its steady drift: the statics find
+  // the drift velocity V_d, and every node moves at it.
+  const bool drifter = isDrifter(problem);
+  const bool towed = problem.lower_end == Problem::LowerEnd::Free && !drifter;
+  Problem start = problem;
+  double V0[3] = {0.0, 0.0, 0.0};
+  if (towed) steadyTowStart(problem, start, V0);
+  const StaticState3D st = solveStart(im, problem, start);
   im.statics = st.result;
   im.lower = makeLowerEnd3D(im.problem, im.mat(0));
   im.upper = makeUpperEnd3D(im.problem, im.mat(im.nodes() - 1));
@@ -333,45 +390,12 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
     im.fork = std::make_unique<ForkJoin>();
     im.newton_matrix.setParallel(im.fork.get());
   }
-
-  const NodeState& topNode = im.statics.nodes.back();
-  const TopMotion& tm = problem.dynamics.top_motion;
-  constexpr double kStartMismatch = 0.01;  // [m] a position table must start where statics put the top
-  const std::string bad = topMotionStartError(tm, topNode.x, topNode.y, topNode.z, kStartMismatch);
-  if (!bad.empty()) throw std::invalid_argument(bad);
-  im.top = makeTopMotion(tm, topNode.x, topNode.y, topNode.z, &im.waves);
-
-  im.t = 0.0;
-  im.Y = st.Y;
-  if (towed || drifter) {
-    for (int j = 0; j < im.nodes(); ++j) {
-      double* y = im.Y.data() + N * j;
-      double R[9];
-      quat::matrix(y + Q0, R);
-      quat::toLocal(R, V0, y + U1);
-    }
-  }
-  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
-  if (drifter) {
-    // The drifter's top kinematics integrate the position rate: start it at V_d (every node
-    // moves so), else the first step loses (1 - gamma) dt V_d of the drift.
-    for (int j = 0; j < im.nodes(); ++j)
-      for (int i = 0; i < 3; ++i) im.Yd[N * j + X + i] = V0[i];
-  }
+  setTopMotion(im, problem);
+  startState(im, st.Y, towed || drifter, drifter, V0);
   im.waterField(im.Y, 0.0, im.water);
   im.spatialRows(im.Y, im.water, im.S);
   im.acceptEndLevels(im.Y, im.water, 0.0);
-
-  // Error scales chi_m of eq. 39, as in 2-D.
-  double Tc = 1.0, stiffest = 0.0;
-  for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
-  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
-  im.chi[EPS] = Tc / stiffest;
-  im.chi[S2] = im.chi[S3] = Tc;
-  im.chi[U1] = im.chi[U2] = im.chi[U3] = 1.0;  // [m/s]
-  im.chi[O1] = im.chi[O2] = im.chi[O3] = 1.0 / std::max(im.mesh.minSpacing(), 1e-3);
-  im.chi[Q0] = im.chi[Q1] = im.chi[Q2] = im.chi[Q3] = 1.0;
-  im.chi[X] = im.chi[eq3d::Y] = im.chi[Z] = 1.0;  // [m]
+  setErrorScales(im, problem);
 }
 
 DynamicSolver3D::~DynamicSolver3D() = default;
