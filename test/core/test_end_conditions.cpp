@@ -164,6 +164,12 @@ TEST(EndConditions2D, FactoryPicksTheTypeOfTheProblem) {
   }
   EXPECT_EQ(makeLowerEnd2D(p)->staticRows(), 3);
   EXPECT_EQ(makeLowerEnd2D(p)->dynamicRows(), 5);
+  // Only a force top prescribes a force, the scale of the error measure (eq. 39).
+  p.top.type = TopBoundary::Type::Force;
+  EXPECT_EQ(makeUpperEnd2D(p, m)->characteristicForce(), std::hypot(p.top.fx, p.top.fz));
+  p.top.type = TopBoundary::Type::Position;
+  EXPECT_EQ(makeUpperEnd2D(p, m)->characteristicForce(), 0.0);
+  EXPECT_EQ(makeLowerEnd2D(p)->characteristicForce(), 0.0);
 }
 
 TEST(EndConditions2D, EveryJacobianBlockMatchesCentralDifferences) {
@@ -333,6 +339,10 @@ TEST(EndConditions3D, FactoryPicksTheTypeOfTheProblem) {
     // A free lower end gives up three rows (rest) that its top takes (position or kinematics).
     const int lower_rows = c.lower == L::Free ? 7 : 10;
     EXPECT_EQ(lower_rows + top->dynamicRows(), 16) << c.name;
+    const double f = c.type == T::Force ? std::sqrt(base.top.fx * base.top.fx + base.top.fy * base.top.fy +
+                                                    base.top.fz * base.top.fz)
+                                        : 0.0;
+    EXPECT_EQ(top->characteristicForce(), f) << c.name;
   }
 }
 

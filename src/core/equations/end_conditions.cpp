@@ -1,5 +1,6 @@
 #include "mooring_dynamics/core/equations/end_conditions.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -127,6 +128,7 @@ class ForceTop2D : public DrivenTop2D {
  public:
   using DrivenTop2D::DrivenTop2D;
   const char* name() const override { return "force top"; }
+  double characteristicForce() const override { return std::hypot(p_.top.fx, p_.top.fz); }
   void staticResidual(const ADs* y, ADs* r) const override {
     using namespace eq2d;
     r[0] = y[OMEGA];
@@ -387,6 +389,10 @@ class ForceTop3D : public DrivenTop3D {
  public:
   using DrivenTop3D::DrivenTop3D;
   const char* name() const override { return "force top"; }
+  double characteristicForce() const override {
+    const TopBoundary& tb = p_.top;
+    return std::sqrt(tb.fx * tb.fx + tb.fy * tb.fy + tb.fz * tb.fz);
+  }
   void staticResidual(const StaticEnd3D&, const AD* y, AD* r) const override {
     topMomentFree(y, r);
     const double f[3] = {p_.top.fx, p_.top.fy, p_.top.fz};

@@ -36,7 +36,7 @@ StaticSystem2D::StaticSystem2D(const Problem& problem, const Mesh& mesh)
       lower_rows_(lower_->staticRows()) {
   // Characteristic magnitudes for the error measure (chi_m of eq. 39).
   double Tc = std::abs(totalWetWeight(problem, mesh));
-  if (problem.top.type == TopBoundary::Type::Force) Tc = std::max(Tc, std::hypot(problem.top.fx, problem.top.fz));
+  Tc = std::max(Tc, upper_->characteristicForce());  // a force top's force
   Tc = std::max(Tc, 1.0);
   double stiffest = 0.0;
   for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));

@@ -43,9 +43,7 @@ StaticSystem3D::StaticSystem3D(const Problem& problem, const Mesh& mesh, const d
       lower_rows_(lower_->staticRows()) {
   for (int i = 0; i < 4; ++i) q_ref_[i] = q_ref[i];
   double Tc = std::abs(totalWetWeight(problem, mesh));
-  if (problem.top.type == TopBoundary::Type::Force)
-    Tc = std::max(Tc, std::sqrt(problem.top.fx * problem.top.fx + problem.top.fy * problem.top.fy +
-                                problem.top.fz * problem.top.fz));
+  Tc = std::max(Tc, upper_->characteristicForce());  // a force top's force
   Tc = std::max(Tc, 1.0);
   double stiffest = 0.0;
   for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));

@@ -56,6 +56,10 @@ class EndCondition2D {
   /// top's prescribed motion or force `in` at that time (unused at the anchor).
   virtual int dynamicRows() const = 0;
   virtual void dynamicResidual(const TopState& in, const ADd* y, ADd* r) const = 0;
+
+  /// A force the end prescribes [N] (0 when none): with the line's weight, the scale of the
+  /// forces in the error measure (chi_m of eq. 39).
+  virtual double characteristicForce() const { return 0.0; }
 };
 
 /// The lower end of a 2-D line: the anchor (a free lower end needs the 3-D model).
@@ -106,6 +110,9 @@ class EndCondition3D {
   virtual int dynamicRows() const = 0;
   virtual void dynamicResidual(const DynamicEnd3D& c, const double* y, double* r) const = 0;
   virtual void dynamicResidual(const DynamicEnd3D& c, const AD* y, AD* r) const = 0;
+
+  /// A force the end prescribes [N] (0 when none), as in 2-D.
+  virtual double characteristicForce() const { return 0.0; }
 
   /// An end with a balance weighted in time (eq. 30: a free end's body, a top body, a drifting
   /// buoy) keeps the spatial part of it at the accepted level: taken here from the node's
