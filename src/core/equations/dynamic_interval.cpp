@@ -150,48 +150,23 @@ void intervalStepRows(const Environment& env, const Material& m, double h, const
   intervalStepRows(m, h, a, b, ta, tb, wts, Sprev, R, J);
 }
 
-void intervalStepRows(const Material& m, double h, const NodeView& a, const NodeView& b, const NodeTerms& ta,
-                      const NodeTerms& tb, const StepWeights& wts, const double* Sprev, double* R, double (*J)[2 * N]) {
-  const double* Ya = a.y;
-  const double* Yb = b.y;
-  const double ak = wts.ak, wk = 1.0 - ak, hh = 0.5 * h;
-  // Spatial part K dY/ds + F times h (eqs. 1-6, 42 on the half grid, eq. 11).
-  const double Ta = eq2d::tension(m, Ya[EPS]), Tb = eq2d::tension(m, Yb[EPS]);
-  const double pa3 = 1.0 + Ya[EPS], pb3 = 1.0 + Yb[EPS];
-  const double dphi = Yb[PHI] - Ya[PHI];
-  const double f1a = ta.f1, f2a = ta.f2, f1b = tb.f1, f2b = tb.f2;
-  const double *df1a = ta.df1, *df2a = ta.df2, *df1b = tb.df1, *df2b = tb.df2;
-  double sp[N];
-  intervalSpatialRows(m, h, a, b, f1a, f2a, f1b, f2b, sp);
-  // Inertia at both levels applied to the weighted rate, averaged over the nodes (eq. 13).
-  const double *ia = ta.I, *ib = tb.I, *qa = ta.Ip, *qb = tb.Ip;
-  const double(*dia)[N] = ta.dI;
-  const double(*dib)[N] = tb.dI;
-  const double(*dqa)[N] = ta.dIp;
-  const double(*dqb)[N] = tb.dIp;
-  for (int q = 0; q < N; ++q) {
-    if (q < kWeightedRows) {
-      const double in1 = q < 4 ? hh * (ia[q] + ib[q]) : 0.0;
-      const double in0 = q < 4 ? hh * (qa[q] + qb[q]) : 0.0;
-      R[q] = wk * in1 + ak * in0 + wk * sp[q] + ak * Sprev[q];  // eqs. 30-31 (alpha_k weights)
-    } else {
-      R[q] = sp[q];  // coordinates at the new level
-    }
-  }
-  if (!J) return;
+namespace {
 
-  // Jacobian of the spatial rows; columns k (node a) and N + k (node b).
-  double D[N][2 * N];
-  for (int q = 0; q < N; ++q)
-    for (int k = 0; k < 2 * N; ++k) D[q][k] = 0.0;
+using Block = double[N][2 * N];  ///< an interval's 8 rows on the 16 unknowns of its two nodes
+
+/// Rows 0-1 of the spatial Jacobian: the loads' derivatives (nodeStepTerms), then the force
+/// balance, eqs. 1 and 2 (h times K dY/ds + F on the half grid).
+void forceBalanceJacobian(const Material& m, double hh, const double* Ya, const double* Yb, const NodeTerms& ta,
+                          const NodeTerms& tb, Block& D) {
+  const double Ta = eq2d::tension(m, Ya[EPS]), Tb = eq2d::tension(m, Yb[EPS]);
+  const double dphi = Yb[PHI] - Ya[PHI];
   const double dTa = m.tensionSlope(Ya[EPS]), dTb = m.tensionSlope(Yb[EPS]);
   const double Snm = 0.5 * (Ya[SN] + Yb[SN]), Tm = 0.5 * (Ta + Tb);
-  const double Vm = 0.5 * (Ya[V] + Yb[V]), Um = 0.5 * (Ya[U] + Yb[U]);
   for (int k = 0; k < N; ++k) {
-    D[0][k] = hh * df1a[k];
-    D[0][N + k] = hh * df1b[k];
-    D[1][k] = hh * df2a[k];
-    D[1][N + k] = hh * df2b[k];
+    D[0][k] = hh * ta.df1[k];
+    D[0][N + k] = hh * tb.df1[k];
+    D[1][k] = hh * ta.df2[k];
+    D[1][N + k] = hh * tb.df2[k];
   }
   // eq. 1
   D[0][EPS] -= dTa;
@@ -207,6 +182,13 @@ void intervalStepRows(const Material& m, double h, const NodeView& a, const Node
   D[1][N + SN] += 1.0;
   D[1][PHI] -= Tm;
   D[1][N + PHI] += Tm;
+}
+
+/// Rows 2-5: velocity compatibility (eqs. 3, 4), the curvature (eq. 5) and the moment (eq. 6).
+void compatibilityJacobian(const Material& m, double hh, const double* Ya, const double* Yb, Block& D) {
+  const double pa3 = 1.0 + Ya[EPS], pb3 = 1.0 + Yb[EPS];
+  const double dphi = Yb[PHI] - Ya[PHI];
+  const double Vm = 0.5 * (Ya[V] + Yb[V]), Um = 0.5 * (Ya[U] + Yb[U]);
   // eq. 3
   D[2][U] = -1.0;
   D[2][N + U] = 1.0;
@@ -230,7 +212,11 @@ void intervalStepRows(const Material& m, double h, const NodeView& a, const Node
   D[5][N + SN] = hh * pb3 * pb3 * pb3;
   D[5][EPS] = hh * Ya[SN] * 3.0 * pa3 * pa3;
   D[5][N + EPS] = hh * Yb[SN] * 3.0 * pb3 * pb3;
-  // eq. 42
+}
+
+/// Rows 6-7: the coordinates (eq. 42).
+void coordinateJacobian(double hh, const NodeView& a, const NodeView& b, Block& D) {
+  const double pa3 = 1.0 + a.y[EPS], pb3 = 1.0 + b.y[EPS];
   D[6][X] = -1.0;
   D[6][N + X] = 1.0;
   D[6][EPS] = -hh * a.s;
@@ -243,16 +229,50 @@ void intervalStepRows(const Material& m, double h, const NodeView& a, const Node
   D[7][N + EPS] = -hh * b.c;
   D[7][PHI] = hh * pa3 * a.s;
   D[7][N + PHI] = hh * pb3 * b.s;
+}
 
+/// The step's Jacobian from the spatial one D: the weighted rows (eq. 30) times 1 - alpha_k, plus
+/// the inertia at both levels averaged over the nodes (eq. 13), alpha_k-weighted.
+void stepJacobian(const Block& D, const NodeTerms& ta, const NodeTerms& tb, double hh, double ak, double (*J)[2 * N]) {
+  const double wk = 1.0 - ak;
   for (int q = 0; q < N; ++q) {
     const double f = q < kWeightedRows ? wk : 1.0;
     for (int k = 0; k < 2 * N; ++k) J[q][k] = f * D[q][k];
   }
   for (int q = 0; q < 4; ++q)
     for (int k = 0; k < N; ++k) {
-      J[q][k] += hh * (wk * dia[q][k] + ak * dqa[q][k]);
-      J[q][N + k] += hh * (wk * dib[q][k] + ak * dqb[q][k]);
+      J[q][k] += hh * (wk * ta.dI[q][k] + ak * ta.dIp[q][k]);
+      J[q][N + k] += hh * (wk * tb.dI[q][k] + ak * tb.dIp[q][k]);
     }
+}
+
+}  // namespace
+
+void intervalStepRows(const Material& m, double h, const NodeView& a, const NodeView& b, const NodeTerms& ta,
+                      const NodeTerms& tb, const StepWeights& wts, const double* Sprev, double* R, double (*J)[2 * N]) {
+  const double ak = wts.ak, wk = 1.0 - ak, hh = 0.5 * h;
+  // Spatial part K dY/ds + F times h (eqs. 1-6, 42 on the half grid, eq. 11).
+  double sp[N];
+  intervalSpatialRows(m, h, a, b, ta.f1, ta.f2, tb.f1, tb.f2, sp);
+  // Inertia at both levels applied to the weighted rate, averaged over the nodes (eq. 13).
+  for (int q = 0; q < N; ++q) {
+    if (q < kWeightedRows) {
+      const double in1 = q < 4 ? hh * (ta.I[q] + tb.I[q]) : 0.0;
+      const double in0 = q < 4 ? hh * (ta.Ip[q] + tb.Ip[q]) : 0.0;
+      R[q] = wk * in1 + ak * in0 + wk * sp[q] + ak * Sprev[q];  // eqs. 30-31 (alpha_k weights)
+    } else {
+      R[q] = sp[q];  // coordinates at the new level
+    }
+  }
+  if (!J) return;
+  // Jacobian of the spatial rows; columns k (node a) and N + k (node b).
+  Block D;
+  for (int q = 0; q < N; ++q)
+    for (int k = 0; k < 2 * N; ++k) D[q][k] = 0.0;
+  forceBalanceJacobian(m, hh, a.y, b.y, ta, tb, D);
+  compatibilityJacobian(m, hh, a.y, b.y, D);
+  coordinateJacobian(hh, a, b, D);
+  stepJacobian(D, ta, tb, hh, ak, J);
 }
 
 }  // namespace eq2dyn

@@ -52,84 +52,91 @@ SeabedGrid readGridFile(const Item& it, const std::string& base_dir) {
   }
 }
 
+namespace {
+
+/// environment.seabed: foundation stiffness and damping, the static cap, a depth profile in x or
+/// a depth grid file.
+void readSeabed(const Item& it, Seabed& seabed, const std::string& base_dir) {
+  const Map sb(it, {"stiffness", "damping", "profile", "grid_file", "static_cap"});
+  seabed.stiffness = sb.number("stiffness", seabed.stiffness, Range::Positive);
+  seabed.damping = sb.number("damping", seabed.damping, Range::NonNegative);
+  if (sb.has("static_cap")) seabed.static_cap = readBool(sb.at("static_cap"));
+  if (sb.has("profile")) {
+    std::vector<Item> items;
+    const Item pit = sb.at("profile");
+    seabed.profile = readPairs(pit, "[x, depth]", &items);
+    if (seabed.profile.size() < 2)
+      pit.fail("needs at least 2 points [x, depth]; omit it for a flat seabed at environment.depth");
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const auto& pt = seabed.profile[i];
+      if (!(pt.second > 0.0)) items[i].fail("depth must be > 0");
+      if (i > 0 && !(pt.first > seabed.profile[i - 1].first))
+        items[i].fail("x must increase along the profile (previous x = " +
+                      formatNumber(seabed.profile[i - 1].first) + ")");
+    }
+  }
+  if (sb.has("grid_file")) {
+    const Item gi = sb.at("grid_file");
+    if (sb.has("profile"))
+      throw ProblemError(sb.path() + ": has both profile and grid_file; give at most one (a grid also covers "
+                         "a depth varying in x only)" + lineSuffix(gi.mark));
+    seabed.grid = readGridFile(gi, base_dir);
+  }
+}
+
+/// environment.current: a uniform {speed, direction_deg} down to the deepest seabed, or a profile
+/// of {depth, speed, direction_deg}.
+void readCurrent(const Item& cit, Environment& env) {
+  env.current.clear();
+  if (cit.node.IsMap()) {
+    // Uniform current shorthand: {speed, direction_deg} -> same value from the surface to the bottom.
+    const Map c(cit, {"speed", "direction_deg"});
+    CurrentPoint p;
+    p.speed = c.number("speed", Range::NonNegative);
+    p.direction = c.number("direction_deg", 0.0, Range::Any) * kDegToRad;
+    double bottom = env.depth;
+    for (const auto& q : env.seabed.profile) bottom = std::max(bottom, q.second);
+    for (double d : env.seabed.grid.depths) bottom = std::max(bottom, d);
+    p.depth = 0.0;
+    env.current.push_back(p);
+    p.depth = bottom;
+    env.current.push_back(p);
+  } else if (cit.node.IsSequence()) {
+    const std::vector<Item> items = listItems(cit);
+    if (items.size() < 2)
+      cit.fail("a current profile needs at least 2 points {depth, speed, direction_deg}; "
+               "for a uniform current write current: {speed: ..., direction_deg: ...}");
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const Map c(items[i], {"depth", "speed", "direction_deg"});
+      CurrentPoint p;
+      p.depth = c.number("depth", Range::NonNegative);
+      p.speed = c.number("speed", Range::NonNegative);
+      p.direction = c.number("direction_deg", 0.0, Range::Any) * kDegToRad;
+      if (i > 0 && !(p.depth > env.current.back().depth))
+        c.at("depth").fail("depth must increase along the profile (previous depth = " +
+                           formatNumber(env.current.back().depth) + ")");
+      env.current.push_back(p);
+    }
+  } else {
+    cit.wrongType("a list of {depth, speed, direction_deg} or a map {speed, direction_deg}");
+  }
+}
+
+}  // namespace
+
 void readEnvironment(const Item& it, Environment& env, const std::string& base_dir) {
   const Map m(it, {"water_density", "air_density", "gravity", "depth", "seabed", "current", "wind", "waves"});
   env.water_density = m.number("water_density", env.water_density, Range::Positive);
   env.air_density = m.number("air_density", env.air_density, Range::NonNegative);
   env.gravity = m.number("gravity", env.gravity, Range::Positive);
   env.depth = m.number("depth", env.depth, Range::Positive);
-
-  if (m.has("seabed")) {
-    const Map sb(m.at("seabed"), {"stiffness", "damping", "profile", "grid_file", "static_cap"});
-    env.seabed.stiffness = sb.number("stiffness", env.seabed.stiffness, Range::Positive);
-    env.seabed.damping = sb.number("damping", env.seabed.damping, Range::NonNegative);
-    if (sb.has("static_cap")) env.seabed.static_cap = readBool(sb.at("static_cap"));
-    if (sb.has("profile")) {
-      std::vector<Item> items;
-      const Item pit = sb.at("profile");
-      env.seabed.profile = readPairs(pit, "[x, depth]", &items);
-      if (env.seabed.profile.size() < 2)
-        pit.fail("needs at least 2 points [x, depth]; omit it for a flat seabed at environment.depth");
-      for (std::size_t i = 0; i < items.size(); ++i) {
-        const auto& pt = env.seabed.profile[i];
-        if (!(pt.second > 0.0)) items[i].fail("depth must be > 0");
-        if (i > 0 && !(pt.first > env.seabed.profile[i - 1].first))
-          items[i].fail("x must increase along the profile (previous x = " +
-                        formatNumber(env.seabed.profile[i - 1].first) + ")");
-      }
-    }
-    if (sb.has("grid_file")) {
-      const Item gi = sb.at("grid_file");
-      if (sb.has("profile"))
-        throw ProblemError(sb.path() + ": has both profile and grid_file; give at most one (a grid also covers "
-                           "a depth varying in x only)" + lineSuffix(gi.mark));
-      env.seabed.grid = readGridFile(gi, base_dir);
-    }
-  }
-
+  if (m.has("seabed")) readSeabed(m.at("seabed"), env.seabed, base_dir);
   if (m.has("wind")) {
     const Map w(m.at("wind"), {"speed", "direction_deg"});
     env.wind_speed = w.number("speed", 0.0, Range::NonNegative);
     env.wind_direction = w.number("direction_deg", 0.0, Range::Any) * kDegToRad;
   }
-
-  if (m.has("current")) {
-    const Item cit = m.at("current");
-    env.current.clear();
-    if (cit.node.IsMap()) {
-      // Uniform current shorthand: {speed, direction_deg} -> same value from the surface to the bottom.
-      const Map c(cit, {"speed", "direction_deg"});
-      CurrentPoint p;
-      p.speed = c.number("speed", Range::NonNegative);
-      p.direction = c.number("direction_deg", 0.0, Range::Any) * kDegToRad;
-      double bottom = env.depth;
-      for (const auto& q : env.seabed.profile) bottom = std::max(bottom, q.second);
-      for (double d : env.seabed.grid.depths) bottom = std::max(bottom, d);
-      p.depth = 0.0;
-      env.current.push_back(p);
-      p.depth = bottom;
-      env.current.push_back(p);
-    } else if (cit.node.IsSequence()) {
-      const std::vector<Item> items = listItems(cit);
-      if (items.size() < 2)
-        cit.fail("a current profile needs at least 2 points {depth, speed, direction_deg}; "
-                 "for a uniform current write current: {speed: ..., direction_deg: ...}");
-      for (std::size_t i = 0; i < items.size(); ++i) {
-        const Map c(items[i], {"depth", "speed", "direction_deg"});
-        CurrentPoint p;
-        p.depth = c.number("depth", Range::NonNegative);
-        p.speed = c.number("speed", Range::NonNegative);
-        p.direction = c.number("direction_deg", 0.0, Range::Any) * kDegToRad;
-        if (i > 0 && !(p.depth > env.current.back().depth))
-          c.at("depth").fail("depth must increase along the profile (previous depth = " +
-                             formatNumber(env.current.back().depth) + ")");
-        env.current.push_back(p);
-      }
-    } else {
-      cit.wrongType("a list of {depth, speed, direction_deg} or a map {speed, direction_deg}");
-    }
-  }
-
+  if (m.has("current")) readCurrent(m.at("current"), env);
   if (m.has("waves")) env.waves = readWaves(m.at("waves"));
 }
 

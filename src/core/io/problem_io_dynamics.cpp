@@ -180,7 +180,7 @@ void readTopMotion(const Item& it, TopMotion& tm) {
         throw ProblemError(r.path + " = " + render(r.node) + ": has " + std::to_string(r.node.size()) +
                            " values, the first row " + std::to_string(width) + "; all rows are " +
                            (width == 3 ? mt->columns : mt->columns3d) + lineSuffix(r.mark));
-      double v[4] = {0.0, 0.0, 0.0, 0.0};
+      double v[4] = {0.0, 0.0, 0.0, 0.0};  // the first `width` are read; zeroed for gcc -Wmaybe-uninitialized
       for (std::size_t j = 0; j < width; ++j)
         v[j] = readNumber(Item{r.node[j], r.path + "[" + std::to_string(j) + "]", markOf(r.node[j], r.mark)});
       if (!tm.table.empty() && !(v[0] > tm.table.back().t))
@@ -236,15 +236,8 @@ void readGnss(const Item& it, GnssOptions& g) {
   g.max_heading_gap = m.number("max_heading_gap", g.max_heading_gap, Range::Positive);
 }
 
-}  // namespace
-
-void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
-  const Map m(it, {"duration", "dt", "output_interval", "snapshot_interval", "record_s", "scheme", "lambda_inf",
-                   "alpha_m", "alpha_k", "gamma", "max_cut_levels", "tolerance", "max_iterations", "relaxation",
-                   "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "threads", "adaptive_mesh", "mesh_weight", "top_motion",
-                   "gnss"});
-  d.duration = m.number("duration", d.duration, Range::Positive);
-  d.dt = m.number("dt", d.dt, Range::Positive);
+/// Output grid, snapshots and recorded nodes (dt already read).
+void readOutputs(const Map& m, DynamicOptions& d, double line_length) {
   if (m.has("output_interval")) {
     const Item oi = m.at("output_interval");
     d.output_interval = checked(oi, readNumber(oi), Range::NonNegative);
@@ -264,8 +257,11 @@ void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
       d.record_s.push_back(s);
     }
   }
+}
 
-  // Time integrator: exactly one of scheme (Table 1 name), lambda_inf (eq. 29) or the three parameters.
+/// The time integrator: exactly one of scheme (Table 1 name), lambda_inf (eq. 29) or the three
+/// parameters alpha_m, alpha_k, gamma.
+void readScheme(const Map& m, DynamicOptions& d) {
   const bool explicit_params = m.has("alpha_m") || m.has("alpha_k") || m.has("gamma");
   std::vector<std::string> forms;
   for (const char* k : {"scheme", "lambda_inf"})
@@ -313,8 +309,10 @@ void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
     d.scheme_name = "alpha_m=" + formatNumber(g.alpha_m) + ", alpha_k=" + formatNumber(g.alpha_k) +
                     ", gamma=" + formatNumber(g.gamma);
   }
+}
 
-  // Step control and Newton iteration per step.
+/// Step control and the Newton iteration per step.
+void readStepControl(const Map& m, DynamicOptions& d) {
   if (m.has("max_cut_levels")) {
     const Item ci = m.at("max_cut_levels");
     const long long v = readInteger(ci);
@@ -342,6 +340,20 @@ void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
     if (v < 1 || v > 2) ti.fail("must be 1 or 2");
     d.threads = static_cast<int>(v);
   }
+}
+
+}  // namespace
+
+void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
+  const Map m(it, {"duration", "dt", "output_interval", "snapshot_interval", "record_s", "scheme", "lambda_inf",
+                   "alpha_m", "alpha_k", "gamma", "max_cut_levels", "tolerance", "max_iterations", "relaxation",
+                   "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "threads", "adaptive_mesh", "mesh_weight", "top_motion",
+                   "gnss"});
+  d.duration = m.number("duration", d.duration, Range::Positive);
+  d.dt = m.number("dt", d.dt, Range::Positive);
+  readOutputs(m, d, line_length);
+  readScheme(m, d);
+  readStepControl(m, d);
   if (m.has("adaptive_mesh")) d.adaptive_mesh = readBool(m.at("adaptive_mesh"));
   d.mesh_weight = m.number("mesh_weight", d.mesh_weight, Range::NonNegative);
 

@@ -100,6 +100,109 @@ RigidPose readPose(const Item& it) {
                                      kDegToRad * m.number("yaw_deg", 0.0, Range::Any));
 }
 
+/// The points by name, in file order.
+struct PointNames {
+  std::map<std::string, std::size_t> index;
+  std::vector<std::string> names;
+};
+
+/// The vessel section: its frame, pose and motion table (its lines come after the system's own).
+void readVessel(const Item& vi, const std::string& base_dir, SystemProblem& sp) {
+  const Map vm(vi, {"frame", "pose", "lines", "motion_table"});
+  sp.vessel.present = true;
+  if (vm.has("frame")) sp.vessel.frame = readString(vm.at("frame"));
+  if (vm.has("motion_table")) {
+    const std::filesystem::path f(readString(vm.at("motion_table")));
+    sp.vessel.motion_table = (f.is_relative() && !base_dir.empty() ? std::filesystem::path(base_dir) / f : f).string();
+  }
+  if (vm.has("pose")) sp.vessel.pose = readPose(vm.at("pose"));
+}
+
+/// One entry of `points`: its type, position (a vessel point's in the body frame), buoy or body.
+SystemPoint readPoint(const std::string& name, const Item& it, const SystemProblem& sp, const Catalogue& cat) {
+  const Map m(it, {"type", "position", "buoy", "body"});
+  SystemPoint pt;
+  pt.name = name;
+  const Item ti = m.required("type");
+  const std::string t = readString(ti);
+  if (t == "anchor") pt.type = SystemPoint::Type::Anchor;
+  else if (t == "fixed") pt.type = SystemPoint::Type::Fixed;
+  else if (t == "buoy") pt.type = SystemPoint::Type::Buoy;
+  else if (t == "body") pt.type = SystemPoint::Type::Body;
+  else if (t == "vessel") pt.type = SystemPoint::Type::Vessel;
+  else throw ProblemError(ti.path + " = " + quoted(t) +
+                          ": unknown point type (known: anchor, fixed, buoy, body, vessel)" + lineSuffix(ti.mark));
+  if (pt.type == SystemPoint::Type::Vessel) {  // a fairlead: its place in the vessel's body frame
+    if (!sp.vessel.present) ti.fail("a vessel point needs the file's `vessel:` section (frame and pose)");
+    readPosition(m.required("position"), pt.body_offset.x(), pt.body_offset.y(), pt.body_offset.z());
+    pt.position_given = true;
+  } else if (m.has("position")) {
+    readPosition(m.at("position"), pt.x, pt.y, pt.z);
+    pt.position_given = true;
+  } else if (!pt.free()) {
+    m.required("position");  // an anchor or a fixed point needs its place
+  }
+  if (pt.type == SystemPoint::Type::Buoy) readBuoy(m.required("buoy"), pt.buoy);
+  else if (m.has("buoy")) m.at("buoy").fail("only for type: buoy");
+  if (pt.type == SystemPoint::Type::Body) pt.body = lookup(m.required("body"), cat.body_index, cat.body_names, "body");
+  else if (m.has("body")) m.at("body").fail("only for type: body");
+  return pt;
+}
+
+/// The `points` map, in file order.
+void readPoints(const Item& pit, const Catalogue& cat, SystemProblem& sp, PointNames& pn) {
+  if (!pit.node.IsMap()) pit.wrongType("a map name -> {type, position, ...}");
+  for (auto kv : pit.node) {
+    if (!kv.first.IsScalar()) throw ProblemError("points: names must be plain strings" + lineSuffix(kv.first.Mark()));
+    const std::string name = kv.first.Scalar();
+    if (pn.index.count(name) || name == "free")
+      throw ProblemError("points." + name + (name == "free" ? ": \"free\" is reserved (a line's free end)"
+                                                             : ": duplicate point name") +
+                         lineSuffix(kv.first.Mark()));
+    const Item it{kv.second, "points." + name, markOf(kv.second, kv.first.Mark())};
+    const SystemPoint pt = readPoint(name, it, sp, cat);
+    pn.index[name] = sp.points.size();
+    pn.names.push_back(name);
+    sp.points.push_back(pt);
+  }
+}
+
+/// The `lines` list, each from its lower end (a point or `free`) to its upper end.
+void readSystemLines(const std::vector<Item>& lit, const Catalogue& cat, const PointNames& pn, SystemProblem& sp) {
+  for (std::size_t i = 0; i < lit.size(); ++i) {
+    const Map m(lit[i], {"name", "from", "to", "segments", "end_body"});
+    SystemLine l;
+    l.name = m.has("name") ? readString(m.at("name")) : "line" + std::to_string(i);
+    for (const SystemLine& prev : sp.lines)
+      if (prev.name == l.name)
+        (m.has("name") ? m.at("name") : lit[i]).fail("duplicate line name (every line needs its own: it names the "
+                                                     "output files and columns)");
+    const Item fi = m.required("from");
+    if (readString(fi) == "free") l.from = SystemLine::kFreeEnd;
+    else l.from = lookup(fi, pn.index, pn.names, "point");
+    l.to = lookup(m.required("to"), pn.index, pn.names, "point");
+    if (m.has("end_body")) l.end_body = lookup(m.at("end_body"), cat.body_index, cat.body_names, "body");
+    Problem tmp;
+    readLine(m.required("segments"), tmp, cat.mat_index, cat.mat_names, cat.body_index, cat.body_names);
+    l.segments = tmp.segments;
+    sp.lines.push_back(l);
+  }
+}
+
+/// The `dynamics` section of a system: no top motion and no recorded nodes.
+void readSystemDynamics(const Item& di, SystemProblem& sp) {
+  double longest = 0.0;
+  for (const SystemLine& l : sp.lines) {
+    double L = 0.0;
+    for (const Segment& g : l.segments) L += g.length;
+    longest = std::max(longest, L);
+  }
+  readDynamics(di, sp.dynamics, longest);
+  if (sp.dynamics.top_motion.type != TopMotion::Type::Hold)
+    di.fail("top_motion: a system's free points move by themselves; there is no top motion to give");
+  if (!sp.dynamics.record_s.empty()) di.fail("record_s: not used by systems (every line's top tension is written)");
+}
+
 /// A system file (docs/problem_format.md, "Systems"): `points` and `lines` instead of `line`,
 /// `anchor` and `top`; and/or a `vessel:` with its lines from anchors to fairleads.
 SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
@@ -114,105 +217,22 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
   Catalogue cat;
   readCatalogue(top, sp.materials, sp.bodies, cat);
   if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), sp.static_options);
-
-  // The vessel: its frame and pose; its lines come after the system's own.
   const bool vessel_lines = presentAndNotNull(top, "vessel") && top.at("vessel").node.IsMap() &&
                             top.at("vessel").node["lines"];
-  if (presentAndNotNull(top, "vessel")) {
-    const Map vm(top.at("vessel"), {"frame", "pose", "lines", "motion_table"});
-    sp.vessel.present = true;
-    if (vm.has("frame")) sp.vessel.frame = readString(vm.at("frame"));
-    if (vm.has("motion_table")) {
-      const std::filesystem::path f(readString(vm.at("motion_table")));
-      sp.vessel.motion_table = (f.is_relative() && !base_dir.empty() ? std::filesystem::path(base_dir) / f : f).string();
-    }
-    if (vm.has("pose")) sp.vessel.pose = readPose(vm.at("pose"));
-  }
-
-  // Points, in file order.
-  std::map<std::string, std::size_t> point_index;
-  std::vector<std::string> point_names;
-  if (!vessel_lines || top.has("points")) {
-  const Item pit = top.required("points");
-  if (!pit.node.IsMap()) pit.wrongType("a map name -> {type, position, ...}");
-  for (auto kv : pit.node) {
-    if (!kv.first.IsScalar()) throw ProblemError("points: names must be plain strings" + lineSuffix(kv.first.Mark()));
-    const std::string name = kv.first.Scalar();
-    if (point_index.count(name) || name == "free")
-      throw ProblemError("points." + name + (name == "free" ? ": \"free\" is reserved (a line's free end)"
-                                                             : ": duplicate point name") +
-                         lineSuffix(kv.first.Mark()));
-    const Item it{kv.second, "points." + name, markOf(kv.second, kv.first.Mark())};
-    const Map m(it, {"type", "position", "buoy", "body"});
-    SystemPoint pt;
-    pt.name = name;
-    const Item ti = m.required("type");
-    const std::string t = readString(ti);
-    if (t == "anchor") pt.type = SystemPoint::Type::Anchor;
-    else if (t == "fixed") pt.type = SystemPoint::Type::Fixed;
-    else if (t == "buoy") pt.type = SystemPoint::Type::Buoy;
-    else if (t == "body") pt.type = SystemPoint::Type::Body;
-    else if (t == "vessel") pt.type = SystemPoint::Type::Vessel;
-    else throw ProblemError(ti.path + " = " + quoted(t) +
-                            ": unknown point type (known: anchor, fixed, buoy, body, vessel)" + lineSuffix(ti.mark));
-    if (pt.type == SystemPoint::Type::Vessel) {  // a fairlead: its place in the vessel's body frame
-      if (!sp.vessel.present) ti.fail("a vessel point needs the file's `vessel:` section (frame and pose)");
-      readPosition(m.required("position"), pt.body_offset.x(), pt.body_offset.y(), pt.body_offset.z());
-      pt.position_given = true;
-    } else if (m.has("position")) {
-      readPosition(m.at("position"), pt.x, pt.y, pt.z);
-      pt.position_given = true;
-    } else if (!pt.free()) {
-      m.required("position");  // an anchor or a fixed point needs its place
-    }
-    if (pt.type == SystemPoint::Type::Buoy) readBuoy(m.required("buoy"), pt.buoy);
-    else if (m.has("buoy")) m.at("buoy").fail("only for type: buoy");
-    if (pt.type == SystemPoint::Type::Body) pt.body = lookup(m.required("body"), cat.body_index, cat.body_names, "body");
-    else if (m.has("body")) m.at("body").fail("only for type: body");
-    point_index[name] = sp.points.size();
-    point_names.push_back(name);
-    sp.points.push_back(pt);
-  }
-  }
-
-  // Lines, each from its lower end (a point or `free`) to its upper end.
+  if (presentAndNotNull(top, "vessel")) readVessel(top.at("vessel"), base_dir, sp);
+  PointNames pn;
+  if (!vessel_lines || top.has("points")) readPoints(top.required("points"), cat, sp, pn);
   const std::vector<Item> lit = vessel_lines && !top.has("lines") ? std::vector<Item>{} : listItems(top.required("lines"));
   if (lit.empty() && !vessel_lines) top.at("lines").fail("needs at least one line");
-  for (std::size_t i = 0; i < lit.size(); ++i) {
-    const Map m(lit[i], {"name", "from", "to", "segments", "end_body"});
-    SystemLine l;
-    l.name = m.has("name") ? readString(m.at("name")) : "line" + std::to_string(i);
-    for (const SystemLine& prev : sp.lines)
-      if (prev.name == l.name)
-        (m.has("name") ? m.at("name") : lit[i]).fail("duplicate line name (every line needs its own: it names the "
-                                                     "output files and columns)");
-    const Item fi = m.required("from");
-    if (readString(fi) == "free") l.from = SystemLine::kFreeEnd;
-    else l.from = lookup(fi, point_index, point_names, "point");
-    l.to = lookup(m.required("to"), point_index, point_names, "point");
-    if (m.has("end_body")) l.end_body = lookup(m.at("end_body"), cat.body_index, cat.body_names, "body");
-    Problem tmp;
-    readLine(m.required("segments"), tmp, cat.mat_index, cat.mat_names, cat.body_index, cat.body_names);
-    l.segments = tmp.segments;
-    sp.lines.push_back(l);
-  }
-  if (vessel_lines) readVesselLines(top.at("vessel").node["lines"], top.at("vessel"), cat, sp, point_index, point_names);
+  readSystemLines(lit, cat, pn, sp);
+  if (vessel_lines) readVesselLines(top.at("vessel").node["lines"], top.at("vessel"), cat, sp, pn.index, pn.names);
   sp.placeVessel(sp.vessel.pose);
   if (presentAndNotNull(top, "dynamics")) {
-    double longest = 0.0;
-    for (const SystemLine& l : sp.lines) {
-      double L = 0.0;
-      for (const Segment& g : l.segments) L += g.length;
-      longest = std::max(longest, L);
-    }
     const Item di = top.at("dynamics");
-    readDynamics(di, sp.dynamics, longest);
+    readSystemDynamics(di, sp);
     sp.dynamics.gnss.track = relativeTo(sp.dynamics.gnss.track, base_dir);
     if (sp.dynamics.gnss.enabled && !sp.vessel.present)
       di.fail("gnss: a ship track moves a vessel; this system has no `vessel:` section");
-    if (sp.dynamics.top_motion.type != TopMotion::Type::Hold)
-      di.fail("top_motion: a system's free points move by themselves; there is no top motion to give");
-    if (!sp.dynamics.record_s.empty()) di.fail("record_s: not used by systems (every line's top tension is written)");
   }
   if (presentAndNotNull(top, "limits")) readLimits(top.at("limits"), sp.limits);
   std::string msg = sp.static_options.validate();

@@ -365,9 +365,11 @@ std::string validateBuoy(const SurfaceBuoy& b) {
 
 }  // namespace
 
-std::string Problem::validate() const {
+namespace {
+
+/// The environment: densities, gravity, depth, seabed, current, wind and waves.
+std::string validateEnvironment(const Environment& env) {
   std::string e;
-  const Environment& env = environment;
   if (!(e = check(finite(env.water_density) && env.water_density > 0.0, "environment.water_density", env.water_density, "must be > 0")).empty()) return e;
   if (!(e = check(finite(env.air_density) && env.air_density >= 0.0, "environment.air_density", env.air_density, "must be >= 0")).empty()) return e;
   if (!(e = check(finite(env.gravity) && env.gravity > 0.0, "environment.gravity", env.gravity, "must be > 0")).empty()) return e;
@@ -397,17 +399,22 @@ std::string Problem::validate() const {
   if (!(e = check(finite(env.wind_speed) && env.wind_speed >= 0.0, "environment.wind.speed", env.wind_speed, "must be >= 0")).empty()) return e;
   if (!(e = check(finite(env.wind_direction), "environment.wind.direction_deg", env.wind_direction, "must be finite")).empty()) return e;
   if (!(e = env.waves.validate()).empty()) return e;
+  return {};
+}
 
-  if (materials.empty()) return "materials: at least one material is needed";
-  for (const auto& m : materials)
+/// The line: materials, bodies and the segments from the anchor up with their bodies.
+std::string validateLine(const Problem& p) {
+  std::string e;
+  if (p.materials.empty()) return "materials: at least one material is needed";
+  for (const auto& m : p.materials)
     if (!(e = validateMaterial(m)).empty()) return e;
-  for (const auto& b : bodies)
+  for (const auto& b : p.bodies)
     if (!(e = validateBody(b)).empty()) return e;
-  if (segments.empty()) return "line: at least one segment is needed";
-  for (std::size_t i = 0; i < segments.size(); ++i) {
-    const Segment& s = segments[i];
+  if (p.segments.empty()) return "line: at least one segment is needed";
+  for (std::size_t i = 0; i < p.segments.size(); ++i) {
+    const Segment& s = p.segments[i];
     const std::string r = "line[" + std::to_string(i) + "]";
-    if (s.material >= materials.size()) return r + ".material index " + std::to_string(s.material) + ": unknown material";
+    if (s.material >= p.materials.size()) return r + ".material index " + std::to_string(s.material) + ": unknown material";
     if (!(e = check(finite(s.length) && s.length > 0.0, r + ".length", s.length, "must be > 0")).empty()) return e;
     if (!(e = check(finite(s.spacing) && s.spacing > 0.0, r + ".spacing", s.spacing, "must be > 0")).empty()) return e;
     if (!(e = check(s.spacing <= s.length, r + ".spacing", s.spacing,
@@ -416,91 +423,129 @@ std::string Problem::validate() const {
     for (std::size_t j = 0; j < s.bodies.size(); ++j) {
       const auto& bp = s.bodies[j];
       const std::string rb = r + ".bodies[" + std::to_string(j) + "]";
-      if (bp.body >= bodies.size()) return rb + ".body index " + std::to_string(bp.body) + ": unknown body";
+      if (bp.body >= p.bodies.size()) return rb + ".body index " + std::to_string(bp.body) + ": unknown body";
       if (!(e = check(finite(bp.at) && bp.at >= 0.0 && bp.at <= s.length, rb + ".at", bp.at,
                       "must be within [0, " + fmt(s.length) + "] (the segment length)")).empty()) return e;
     }
   }
-  if (!(e = check(finite(anchor_x), "anchor.x", anchor_x, "must be finite")).empty()) return e;
-  if (!(e = check(finite(anchor_y), "anchor.y", anchor_y, "must be finite")).empty()) return e;
-  if (!(e = check(finite(anchor_z) && anchor_z <= 0.0, "anchor.z", anchor_z, "must be <= 0 (z = 0 is the sea surface)")).empty()) return e;
-  if (formulation == Formulation::TwoD) {
+  return {};
+}
+
+/// The anchor: finite, not above the surface nor below the seabed; in the plane y = 0 in 2-D.
+std::string validateAnchor(const Problem& p) {
+  std::string e;
+  const Environment& env = p.environment;
+  if (!(e = check(finite(p.anchor_x), "anchor.x", p.anchor_x, "must be finite")).empty()) return e;
+  if (!(e = check(finite(p.anchor_y), "anchor.y", p.anchor_y, "must be finite")).empty()) return e;
+  if (!(e = check(finite(p.anchor_z) && p.anchor_z <= 0.0, "anchor.z", p.anchor_z, "must be <= 0 (z = 0 is the sea surface)")).empty()) return e;
+  if (p.formulation == Formulation::TwoD) {
     // The 2-D equations live in the vertical plane y = 0.
     constexpr const char* kPlanar = "must be 0 with model: 2d (the 2-D line lies in the plane y = 0); use model: 3d";
-    if (!(e = check(anchor_y == 0.0, "anchor.y", anchor_y, kPlanar)).empty()) return e;
-    if (top.type == TopBoundary::Type::Position && !(e = check(top.y == 0.0, "top.position.y", top.y, kPlanar)).empty()) return e;
-    if (top.type == TopBoundary::Type::Force && !(e = check(top.fy == 0.0, "top.force.y", top.fy, kPlanar)).empty()) return e;
+    if (!(e = check(p.anchor_y == 0.0, "anchor.y", p.anchor_y, kPlanar)).empty()) return e;
+    if (p.top.type == TopBoundary::Type::Position && !(e = check(p.top.y == 0.0, "top.position.y", p.top.y, kPlanar)).empty()) return e;
+    if (p.top.type == TopBoundary::Type::Force && !(e = check(p.top.fy == 0.0, "top.force.y", p.top.fy, kPlanar)).empty()) return e;
   }
-  const double zb = env.seabedElevation(anchor_x, anchor_y);
-  if (!(e = check(anchor_z >= zb - 1e-6 * env.depth, "anchor.z", anchor_z,
+  const double zb = env.seabedElevation(p.anchor_x, p.anchor_y);
+  if (!(e = check(p.anchor_z >= zb - 1e-6 * env.depth, "anchor.z", p.anchor_z,
                   "is below the seabed elevation " + fmt(zb) + " m at anchor.x")).empty()) return e;
+  return {};
+}
 
-  if (lower_end == LowerEnd::Free) {
-    if (formulation != Formulation::ThreeD)
+/// A free lower end: 3-D only, with a tow point or a drifting buoy above it.
+std::string validateLowerEnd(const Problem& p) {
+  std::string e;
+  if (p.lower_end == Problem::LowerEnd::Free) {
+    if (p.formulation != Formulation::ThreeD)
       return "free_end: a free lower end (towing) needs model: 3d";
-    if (end_body != kNoBody && end_body >= bodies.size())
-      return "free_end.body index " + std::to_string(end_body) + ": unknown body";
-    if (top.type != TopBoundary::Type::Position && top.type != TopBoundary::Type::Buoy)
+    if (p.end_body != Problem::kNoBody && p.end_body >= p.bodies.size())
+      return "free_end.body index " + std::to_string(p.end_body) + ": unknown body";
+    if (p.top.type != TopBoundary::Type::Position && p.top.type != TopBoundary::Type::Buoy)
       return "top: a line with a free lower end needs top.position (the tow point) or top.buoy (a drifting "
              "surface buoy); a force or body top leaves the line's position undetermined";
-    if (top.type == TopBoundary::Type::Buoy && dynamics.top_motion.type != TopMotion::Type::Hold &&
-        dynamics.top_motion.type != TopMotion::Type::ForceTable)
+    if (p.top.type == TopBoundary::Type::Buoy && p.dynamics.top_motion.type != TopMotion::Type::Hold &&
+        p.dynamics.top_motion.type != TopMotion::Type::ForceTable)
       return "dynamics.top_motion: a drifting buoy (top.buoy with free_end:) moves with the current and the wind; "
              "only type hold (no extra force) or force_table (an extra force on the buoy) apply";
   }
-  if (!(e = check(finite(top.tow_vx) && finite(top.tow_vy), "top.tow_velocity", std::hypot(top.tow_vx, top.tow_vy),
+  return {};
+}
+
+/// The steady tow velocity: only for a towed line.
+std::string validateTowVelocity(const Problem& p) {
+  std::string e;
+  if (!(e = check(finite(p.top.tow_vx) && finite(p.top.tow_vy), "top.tow_velocity", std::hypot(p.top.tow_vx, p.top.tow_vy),
                   "must be finite")).empty()) return e;
-  if ((top.tow_vx != 0.0 || top.tow_vy != 0.0) && lower_end != LowerEnd::Free)
-    return "top.tow_velocity = (" + fmt(top.tow_vx) + ", " + fmt(top.tow_vy) +
+  if ((p.top.tow_vx != 0.0 || p.top.tow_vy != 0.0) && p.lower_end != Problem::LowerEnd::Free)
+    return "top.tow_velocity = (" + fmt(p.top.tow_vx) + ", " + fmt(p.top.tow_vy) +
            "): only for a line with a free lower end (free_end:); an anchored line has no steady tow";
-  if ((top.tow_vx != 0.0 || top.tow_vy != 0.0) && top.type == TopBoundary::Type::Buoy)
-    return "top.tow_velocity = (" + fmt(top.tow_vx) + ", " + fmt(top.tow_vy) +
+  if ((p.top.tow_vx != 0.0 || p.top.tow_vy != 0.0) && p.top.type == TopBoundary::Type::Buoy)
+    return "top.tow_velocity = (" + fmt(p.top.tow_vx) + ", " + fmt(p.top.tow_vy) +
            "): a drifting buoy is not towed; the statics find its drift velocity";
-  switch (top.type) {
+  return {};
+}
+
+/// The top boundary of its type (section 5.1).
+std::string validateTop(const Problem& p) {
+  std::string e;
+  const Environment& env = p.environment;
+  switch (p.top.type) {
     case TopBoundary::Type::Force:
-      if (!(e = check(finite(top.fx), "top.force.x", top.fx, "must be finite")).empty()) return e;
-      if (!(e = check(finite(top.fz), "top.force.z", top.fz, "must be finite")).empty()) return e;
-      if (!(e = check(finite(top.fy), "top.force.y", top.fy, "must be finite")).empty()) return e;
+      if (!(e = check(finite(p.top.fx), "top.force.x", p.top.fx, "must be finite")).empty()) return e;
+      if (!(e = check(finite(p.top.fz), "top.force.z", p.top.fz, "must be finite")).empty()) return e;
+      if (!(e = check(finite(p.top.fy), "top.force.y", p.top.fy, "must be finite")).empty()) return e;
       break;
     case TopBoundary::Type::Position: {
-      if (!(e = check(finite(top.x), "top.position.x", top.x, "must be finite")).empty()) return e;
-      if (!(e = check(finite(top.z), "top.position.z", top.z, "must be finite")).empty()) return e;
-      if (!(e = check(finite(top.y), "top.position.y", top.y, "must be finite")).empty()) return e;
+      if (!(e = check(finite(p.top.x), "top.position.x", p.top.x, "must be finite")).empty()) return e;
+      if (!(e = check(finite(p.top.z), "top.position.z", p.top.z, "must be finite")).empty()) return e;
+      if (!(e = check(finite(p.top.y), "top.position.y", p.top.y, "must be finite")).empty()) return e;
       // A top below the seabed has no equilibrium: the statics would iterate to their limit.
-      const double ztop_bed = env.seabedElevation(top.x, top.y);
-      if (top.z < ztop_bed - 1e-6 * env.depth)
-        return "top.position.z = " + fmt(top.z) + ": below the seabed (z = " + fmt(ztop_bed) +
+      const double ztop_bed = env.seabedElevation(p.top.x, p.top.y);
+      if (p.top.z < ztop_bed - 1e-6 * env.depth)
+        return "top.position.z = " + fmt(p.top.z) + ": below the seabed (z = " + fmt(ztop_bed) +
                " m under the top; environment.depth = " + fmt(env.depth) +
                " m); the top must lie above the seabed (z = 0 is the sea surface)";
       double reach = 0.0;
-      for (const auto& s : segments) reach += s.length * (1.0 + materials[s.material].max_strain);
-      const double dx = top.x - anchor_x, dy = top.y - anchor_y, dz = top.z - anchor_z;
+      for (const auto& s : p.segments) reach += s.length * (1.0 + p.materials[s.material].max_strain);
+      const double dx = p.top.x - p.anchor_x, dy = p.top.y - p.anchor_y, dz = p.top.z - p.anchor_z;
       const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
-      if (!(dist < reach) && lower_end == LowerEnd::Anchor) {
-        const std::string at = formulation == Formulation::TwoD
-                                   ? fmt(top.x) + ", " + fmt(top.z)
-                                   : fmt(top.x) + ", " + fmt(top.y) + ", " + fmt(top.z);
+      if (!(dist < reach) && p.lower_end == Problem::LowerEnd::Anchor) {
+        const std::string at = p.formulation == Formulation::TwoD
+                                   ? fmt(p.top.x) + ", " + fmt(p.top.z)
+                                   : fmt(p.top.x) + ", " + fmt(p.top.y) + ", " + fmt(p.top.z);
         return "top.position = (" + at + "): " + fmt(dist) +
                " m from the anchor, farther than the stretched line can reach (" + fmt(reach) +
-               " m: unstretched length " + fmt(totalLength()) + " m at each material's max_strain)";
+               " m: unstretched length " + fmt(p.totalLength()) + " m at each material's max_strain)";
       }
       break;
     }
     case TopBoundary::Type::Buoy:
-      if (!(e = validateBuoy(top.buoy)).empty()) return e;
+      if (!(e = validateBuoy(p.top.buoy)).empty()) return e;
       break;
     case TopBoundary::Type::Body:
-      if (top.body >= bodies.size()) return "top.body index " + std::to_string(top.body) + ": unknown body";
-      if (formulation != Formulation::ThreeD)
+      if (p.top.body >= p.bodies.size()) return "top.body index " + std::to_string(p.top.body) + ": unknown body";
+      if (p.formulation != Formulation::ThreeD)
         return "top.body: a subsurface buoy at the top needs model: 3d";
-      if (lower_end != LowerEnd::Anchor)
+      if (p.lower_end != Problem::LowerEnd::Anchor)
         return "top.body with free_end: a line free at both ends under a subsurface body is not supported; a drifting "
                "system takes a surface buoy at the top (top.buoy)";
-      if (dynamics.top_motion.type != TopMotion::Type::Hold && dynamics.top_motion.type != TopMotion::Type::ForceTable)
+      if (p.dynamics.top_motion.type != TopMotion::Type::Hold && p.dynamics.top_motion.type != TopMotion::Type::ForceTable)
         return "dynamics.top_motion: with top.body the top is free; only type hold (no extra force) or force_table "
                "(an extra force on the body) apply";
       break;
   }
+  return {};
+}
+
+}  // namespace
+
+std::string Problem::validate() const {
+  std::string e;
+  if (!(e = validateEnvironment(environment)).empty()) return e;
+  if (!(e = validateLine(*this)).empty()) return e;
+  if (!(e = validateAnchor(*this)).empty()) return e;
+  if (!(e = validateLowerEnd(*this)).empty()) return e;
+  if (!(e = validateTowVelocity(*this)).empty()) return e;
+  if (!(e = validateTop(*this)).empty()) return e;
   if (!(e = static_options.validate()).empty()) return e;
   if (!(e = dynamics.validate()).empty()) return e;
   return validateResources();

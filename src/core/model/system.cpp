@@ -71,59 +71,71 @@ bool SystemProblem::hasVesselPoints() const {
   return false;
 }
 
-std::string SystemProblem::validate() const {
-  if (points.empty()) return "points: at least one point is needed";
-  if (lines.empty()) return "lines: at least one line is needed";
-  if (vessel.present) {
-    const std::string e = vessel.pose.validate("vessel.pose");
+namespace {
+
+/// The vessel section, and the lines: unique names, known and distinct end points, segments.
+/// `used` counts the lines at each point.
+std::string validateLines(const SystemProblem& s, std::vector<int>& used) {
+  if (s.vessel.present) {
+    const std::string e = s.vessel.pose.validate("vessel.pose");
     if (!e.empty()) return e;
-    if (vessel.frame.empty()) return "vessel.frame = \"\": needs a frame name (e.g. base_link)";
+    if (s.vessel.frame.empty()) return "vessel.frame = \"\": needs a frame name (e.g. base_link)";
   }
-  const std::size_t np = points.size();
-  std::vector<int> used(np, 0);
-  for (std::size_t i = 0; i < lines.size(); ++i)  // names key the output files and columns
+  const std::size_t np = s.points.size();
+  used.assign(np, 0);
+  for (std::size_t i = 0; i < s.lines.size(); ++i)  // names key the output files and columns
     for (std::size_t j = 0; j < i; ++j)
-      if (lines[j].name == lines[i].name)
-        return "lines[" + std::to_string(i) + "].name = \"" + lines[i].name + "\": duplicate line name (also lines[" +
+      if (s.lines[j].name == s.lines[i].name)
+        return "lines[" + std::to_string(i) + "].name = \"" + s.lines[i].name + "\": duplicate line name (also lines[" +
                std::to_string(j) + "]); every line needs its own name";
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const SystemLine& l = lines[i];
+  for (std::size_t i = 0; i < s.lines.size(); ++i) {
+    const SystemLine& l = s.lines[i];
     const std::string k = "lines[" + std::to_string(i) + "] (" + l.name + ")";
     if (l.to >= np) return k + ".to: unknown point";
     if (l.from != SystemLine::kFreeEnd && l.from >= np) return k + ".from: unknown point";
-    if (l.from == l.to) return k + ": from and to are the same point (" + points[l.to].name + ")";
+    if (l.from == l.to) return k + ": from and to are the same point (" + s.points[l.to].name + ")";
     if (l.segments.empty()) return k + ".segments: at least one segment is needed";
     if (l.end_body != Problem::kNoBody && l.from != SystemLine::kFreeEnd)
       return k + ".end_body: only for a line with a free lower end (from: free)";
     ++used[l.to];
     if (l.from != SystemLine::kFreeEnd) ++used[l.from];
   }
-  for (std::size_t p = 0; p < np; ++p) {
-    const SystemPoint& pt = points[p];
+  return {};
+}
+
+/// Every point: joined to a line, its body and vessel known, its position finite (in 2-D, y = 0).
+std::string validatePoints(const SystemProblem& s, const std::vector<int>& used) {
+  for (std::size_t p = 0; p < s.points.size(); ++p) {
+    const SystemPoint& pt = s.points[p];
     if (!used[p]) return "points." + pt.name + ": not joined to any line";
-    if (pt.type == SystemPoint::Type::Body && pt.body >= bodies.size())
+    if (pt.type == SystemPoint::Type::Body && pt.body >= s.bodies.size())
       return "points." + pt.name + ".body: unknown body";
-    if (pt.type == SystemPoint::Type::Vessel && !vessel.present)
+    if (pt.type == SystemPoint::Type::Vessel && !s.vessel.present)
       return "points." + pt.name + ".type = vessel: the file has no `vessel:` section (its frame and pose)";
     if (pt.type == SystemPoint::Type::Vessel && !pt.body_offset.allFinite())
       return "points." + pt.name + ".position (body frame) must be finite";
     if (!std::isfinite(pt.x) || !std::isfinite(pt.y) || !std::isfinite(pt.z))
       return "points." + pt.name + ".position = (" + fmt(pt.x) + ", " + fmt(pt.y) + ", " + fmt(pt.z) +
              "): must be finite";
-    if (formulation == Formulation::TwoD && pt.y != 0.0)
+    if (s.formulation == Formulation::TwoD && pt.y != 0.0)
       return "points." + pt.name + ".position y = " + fmt(pt.y) +
              ": must be 0 with model: 2d (the 2-D lines lie in the plane y = 0); use model: 3d";
   }
-  // One connected piece holding at least one anchor or fixed point (else it floats away:
-  // statically undetermined), found by a flood fill over the lines (and the vessel's hull).
+  return {};
+}
+
+/// One connected piece holding at least one anchor or fixed point (else it floats away:
+/// statically undetermined), found by a flood fill over the lines (and the vessel's hull).
+std::string validateConnected(const SystemProblem& s) {
+  const std::size_t np = s.points.size();
   std::vector<int> piece(np, -1);
   std::function<void(std::size_t, int)> fill = [&](std::size_t p, int id) {
     if (piece[p] >= 0) return;
     piece[p] = id;
-    if (points[p].type == SystemPoint::Type::Vessel)  // the vessel's points are joined by its hull
+    if (s.points[p].type == SystemPoint::Type::Vessel)  // the vessel's points are joined by its hull
       for (std::size_t q = 0; q < np; ++q)
-        if (points[q].type == SystemPoint::Type::Vessel) fill(q, id);
-    for (const SystemLine& l : lines) {
+        if (s.points[q].type == SystemPoint::Type::Vessel) fill(q, id);
+    for (const SystemLine& l : s.lines) {
       if (l.from == SystemLine::kFreeEnd) continue;
       if (l.from == p) fill(l.to, id);
       if (l.to == p) fill(l.from, id);
@@ -135,61 +147,89 @@ std::string SystemProblem::validate() const {
   if (pieces > 1) {
     std::string names;
     for (std::size_t p = 0; p < np; ++p)
-      if (piece[p] != piece[0]) names += (names.empty() ? "" : ", ") + points[p].name;
+      if (piece[p] != piece[0]) names += (names.empty() ? "" : ", ") + s.points[p].name;
     return "lines: the system falls apart in " + std::to_string(pieces) + " pieces; " + names +
-           " are not connected to " + points[0].name + " (solve separate systems in separate files)";
+           " are not connected to " + s.points[0].name + " (solve separate systems in separate files)";
   }
   bool support = false;
-  for (const SystemPoint& pt : points) support = support || !pt.free();
+  for (const SystemPoint& pt : s.points) support = support || !pt.free();
   if (!support)
     return "points: no anchor or fixed point; a system of free buoys and bodies has no static position "
            "(a drifting system is solved as a single line with a buoy and a free end)";
-  // Anchors lie on the seabed or above it and under the surface; fixed points above the seabed.
-  const double tol = kGeometryTolerance * environment.depth;
-  for (const SystemPoint& pt : points) {
+  return {};
+}
+
+/// Anchors lie on the seabed or above it and under the surface; fixed points above the seabed.
+std::string validateSupports(const SystemProblem& s) {
+  const double tol = kGeometryTolerance * s.environment.depth;
+  for (const SystemPoint& pt : s.points) {
     if (pt.free()) continue;
-    const double bed = environment.seabedElevation(pt.x, pt.y);
+    const double bed = s.environment.seabedElevation(pt.x, pt.y);
     const std::string k = "points." + pt.name + ".position.z = " + fmt(pt.z);
     if (pt.type == SystemPoint::Type::Anchor && pt.z > tol)
       return k + ": an anchor above the sea surface (z = 0); anchors lie on the seabed (z = " + fmt(bed) +
-             " m here, environment.depth = " + fmt(environment.depth) + " m)";
+             " m here, environment.depth = " + fmt(s.environment.depth) + " m)";
     if (pt.z < bed - tol)
-      return k + ": below the seabed (z = " + fmt(bed) + " m here, environment.depth = " + fmt(environment.depth) + " m)";
+      return k + ": below the seabed (z = " + fmt(bed) + " m here, environment.depth = " + fmt(s.environment.depth) +
+             " m)";
   }
-  // Spacing and the size of the whole system (limits.hpp), before any line is built.
+  return {};
+}
+
+/// Spacing and the size of the whole system (limits.hpp), before any line is built.
+std::string validateSizes(const SystemProblem& s) {
   std::string e;
-  if (!(e = limits.validate()).empty()) return e;
+  if (!(e = s.limits.validate()).empty()) return e;
   double nodes = 0.0;
   std::string worst;
   double worst_ratio = -1.0;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
+  for (std::size_t i = 0; i < s.lines.size(); ++i) {
     const std::string prefix = "lines[" + std::to_string(i) + "].segments";
-    if (!(e = validateSpacing(lines[i].segments, prefix)).empty()) return e;
-    nodes += estimateLineNodes(lines[i].segments);
-    for (std::size_t j = 0; j < lines[i].segments.size(); ++j) {
-      const Segment& g = lines[i].segments[j];
+    if (!(e = validateSpacing(s.lines[i].segments, prefix)).empty()) return e;
+    nodes += estimateLineNodes(s.lines[i].segments);
+    for (std::size_t j = 0; j < s.lines[i].segments.size(); ++j) {
+      const Segment& g = s.lines[i].segments[j];
       if (g.length / g.spacing > worst_ratio) {
         worst_ratio = g.length / g.spacing;
         worst = prefix + "[" + std::to_string(j) + "].spacing = " + fmt(g.spacing) + " (length " + fmt(g.length) + " m)";
       }
     }
   }
-  if (!(e = dynamics.validate()).empty()) return e;
-  if (!(e = checkResources(estimateResources(nodes, dynamics, formulation == Formulation::ThreeD, 3 * points.size() + lines.size()),
-                           limits, worst)).empty()) return e;
-  // The single-line checks of every line at the initial positions (materials, segments, reach).
+  if (!(e = s.dynamics.validate()).empty()) return e;
+  return checkResources(
+      estimateResources(nodes, s.dynamics, s.formulation == Formulation::ThreeD, 3 * s.points.size() + s.lines.size()),
+      s.limits, worst);
+}
+
+/// The single-line checks of every line at the initial positions (materials, segments, reach).
+std::string validateLineProblems(const SystemProblem& s) {
   std::vector<double> xyz;
-  for (const SystemPoint& pt : points) xyz.insert(xyz.end(), {pt.x, pt.y, pt.z});
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    Problem p = lineProblem(i, xyz);
+  for (const SystemPoint& pt : s.points) xyz.insert(xyz.end(), {pt.x, pt.y, pt.z});
+  for (std::size_t i = 0; i < s.lines.size(); ++i) {
+    Problem p = s.lineProblem(i, xyz);
     // Free points may start anywhere; only fixed ends are held to the seabed and reach checks.
-    const bool free_ends = (lines[i].from != SystemLine::kFreeEnd && points[lines[i].from].free()) ||
-                           points[lines[i].to].free();
+    const bool free_ends = (s.lines[i].from != SystemLine::kFreeEnd && s.points[s.lines[i].from].free()) ||
+                           s.points[s.lines[i].to].free();
     if (free_ends) continue;
     const std::string e = p.validate();
-    if (!e.empty()) return "lines[" + std::to_string(i) + "] (" + lines[i].name + "): " + e;
+    if (!e.empty()) return "lines[" + std::to_string(i) + "] (" + s.lines[i].name + "): " + e;
   }
   return {};
+}
+
+}  // namespace
+
+std::string SystemProblem::validate() const {
+  if (points.empty()) return "points: at least one point is needed";
+  if (lines.empty()) return "lines: at least one line is needed";
+  std::string e;
+  std::vector<int> used;
+  if (!(e = validateLines(*this, used)).empty()) return e;
+  if (!(e = validatePoints(*this, used)).empty()) return e;
+  if (!(e = validateConnected(*this)).empty()) return e;
+  if (!(e = validateSupports(*this)).empty()) return e;
+  if (!(e = validateSizes(*this)).empty()) return e;
+  return validateLineProblems(*this);
 }
 
 }  // namespace core

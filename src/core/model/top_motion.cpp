@@ -54,97 +54,131 @@ TopState held(double x0, double y0, double z0) {
 
 }  // namespace
 
+namespace {
+
+/// Sinusoid about the static top (x0, y0, z0), at rest at t = 0 but for its velocity.
+std::function<TopState(double t)> sinusoid(const TopMotion& m, double x0, double y0, double z0) {
+  return [m, x0, y0, z0](double t) {
+    const double w = kTwoPi / m.period, a = w * t + m.phase;
+    const double s = std::sin(a) - std::sin(m.phase), c = std::cos(a);
+    TopState st;
+    st.x = x0 + m.amplitude_x * s;
+    st.y = y0 + m.amplitude_y * s;
+    st.z = z0 + m.amplitude_z * s;
+    st.vx = m.amplitude_x * w * c;
+    st.vy = m.amplitude_y * w * c;
+    st.vz = m.amplitude_z * w * c;
+    return st;
+  };
+}
+
+/// The rows' positions, linear in time, the velocity the slope of the current interval.
+std::function<TopState(double t)> positionTable(const std::vector<TopMotion::Row>& table) {
+  return [tab = table](double t) {
+    double p[3], v[3];
+    sampleTable(tab, t, p, v);
+    TopState st;
+    st.x = p[0];
+    st.y = p[1];
+    st.z = p[2];
+    st.vx = v[0];
+    st.vy = v[1];
+    st.vz = v[2];
+    return st;
+  };
+}
+
+/// The rows' forces, linear in time.
+std::function<TopState(double t)> forceTable(const std::vector<TopMotion::Row>& table) {
+  return [tab = table](double t) {
+    double f[3];
+    sampleTable(tab, t, f, nullptr);
+    TopState st;
+    st.force = true;
+    st.fx = f[0];
+    st.fy = f[1];
+    st.fz = f[2];
+    return st;
+  };
+}
+
+/// The rows' velocities, linear in time, the position their exact integral from (x0, y0, z0).
+std::function<TopState(double t)> velocityTable(const std::vector<TopMotion::Row>& table, double x0, double y0, double z0) {
+  return [tab = table, x0, y0, z0](double t) {
+    // Position: the exact integral of the piecewise-linear velocity (trapezoids between the
+    // table times, where the velocity has its kinks).
+    std::vector<double> knots{0.0};
+    for (const auto& r : tab)
+      if (r.t > 0.0 && r.t < t) knots.push_back(r.t);
+    knots.push_back(t);
+    double p[3] = {x0, y0, z0};
+    double v0[3], v1[3];
+    for (std::size_t k = 1; k < knots.size(); ++k) {
+      sampleTable(tab, knots[k - 1], v0, nullptr);
+      sampleTable(tab, knots[k], v1, nullptr);
+      for (int c = 0; c < 3; ++c) p[c] += 0.5 * (v0[c] + v1[c]) * (knots[k] - knots[k - 1]);
+    }
+    double v[3];
+    sampleTable(tab, t, v, nullptr);
+    TopState st;
+    st.x = p[0];
+    st.y = p[1];
+    st.z = p[2];
+    st.vx = v[0];
+    st.vy = v[1];
+    st.vz = v[2];
+    return st;
+  };
+}
+
+/// The ship track's position and velocity, at the static top's depth.
+std::function<TopState(double t)> shipTrack(const ShipTrack& track_in, double x0, double y0, double z0) {
+  return [track = track_in, x0, y0, z0](double t) {
+    const ShipPose p = track.at(t, x0, y0);
+    TopState st;
+    st.x = p.x;
+    st.y = p.y;
+    st.z = z0;
+    st.vx = p.vx;
+    st.vy = p.vy;
+    st.heading = p.heading;
+    return st;
+  };
+}
+
+/// The static top moved with the sea surface's elevation above it.
+std::function<TopState(double t)> waveFollower(double x0, double y0, double z0, const WaveField* waves) {
+  return [x0, y0, z0, waves](double t) {
+    TopState st = held(x0, y0, z0);
+    if (waves && !waves->empty()) {
+      double eta, rate;
+      waves->elevationAndRate(x0, y0, t, eta, rate);
+      st.z = z0 + eta;
+      st.vz = rate;
+    }
+    return st;
+  };
+}
+
+}  // namespace
+
 std::function<TopState(double t)> makeTopMotion(const TopMotion& m, double x0, double y0, double z0,
                                                 const WaveField* waves) {
   switch (m.type) {
     case TopMotion::Type::Hold:
       return [x0, y0, z0](double) { return held(x0, y0, z0); };
     case TopMotion::Type::Sinusoid:
-      return [m, x0, y0, z0](double t) {
-        const double w = kTwoPi / m.period, a = w * t + m.phase;
-        const double s = std::sin(a) - std::sin(m.phase), c = std::cos(a);
-        TopState st;
-        st.x = x0 + m.amplitude_x * s;
-        st.y = y0 + m.amplitude_y * s;
-        st.z = z0 + m.amplitude_z * s;
-        st.vx = m.amplitude_x * w * c;
-        st.vy = m.amplitude_y * w * c;
-        st.vz = m.amplitude_z * w * c;
-        return st;
-      };
+      return sinusoid(m, x0, y0, z0);
     case TopMotion::Type::PositionTable:
-      return [tab = m.table](double t) {
-        double p[3], v[3];
-        sampleTable(tab, t, p, v);
-        TopState st;
-        st.x = p[0];
-        st.y = p[1];
-        st.z = p[2];
-        st.vx = v[0];
-        st.vy = v[1];
-        st.vz = v[2];
-        return st;
-      };
+      return positionTable(m.table);
     case TopMotion::Type::ForceTable:
-      return [tab = m.table](double t) {
-        double f[3];
-        sampleTable(tab, t, f, nullptr);
-        TopState st;
-        st.force = true;
-        st.fx = f[0];
-        st.fy = f[1];
-        st.fz = f[2];
-        return st;
-      };
+      return forceTable(m.table);
     case TopMotion::Type::VelocityTable:
-      return [tab = m.table, x0, y0, z0](double t) {
-        // Position: the exact integral of the piecewise-linear velocity (trapezoids between the
-        // table times, where the velocity has its kinks).
-        std::vector<double> knots{0.0};
-        for (const auto& r : tab)
-          if (r.t > 0.0 && r.t < t) knots.push_back(r.t);
-        knots.push_back(t);
-        double p[3] = {x0, y0, z0};
-        double v0[3], v1[3];
-        for (std::size_t k = 1; k < knots.size(); ++k) {
-          sampleTable(tab, knots[k - 1], v0, nullptr);
-          sampleTable(tab, knots[k], v1, nullptr);
-          for (int c = 0; c < 3; ++c) p[c] += 0.5 * (v0[c] + v1[c]) * (knots[k] - knots[k - 1]);
-        }
-        double v[3];
-        sampleTable(tab, t, v, nullptr);
-        TopState st;
-        st.x = p[0];
-        st.y = p[1];
-        st.z = p[2];
-        st.vx = v[0];
-        st.vy = v[1];
-        st.vz = v[2];
-        return st;
-      };
+      return velocityTable(m.table, x0, y0, z0);
     case TopMotion::Type::ShipTrack:
-      return [track = m.ship_track, x0, y0, z0](double t) {
-        const ShipPose p = track.at(t, x0, y0);
-        TopState st;
-        st.x = p.x;
-        st.y = p.y;
-        st.z = z0;
-        st.vx = p.vx;
-        st.vy = p.vy;
-        st.heading = p.heading;
-        return st;
-      };
+      return shipTrack(m.ship_track, x0, y0, z0);
     case TopMotion::Type::WaveFollower:
-      return [x0, y0, z0, waves](double t) {
-        TopState st = held(x0, y0, z0);
-        if (waves && !waves->empty()) {
-          double eta, rate;
-          waves->elevationAndRate(x0, y0, t, eta, rate);
-          st.z = z0 + eta;
-          st.vz = rate;
-        }
-        return st;
-      };
+      return waveFollower(x0, y0, z0, waves);
   }
   return nullptr;
 }

@@ -57,142 +57,154 @@ void inParts(ForkJoin* fork, int split, int n, const F& f) {
   runBoth(fork, [&] { f(0, split, 0); }, [&] { f(split, n, 1); });
 }
 
-}  // namespace
-
-SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options,
-                          BandedMatrix* workspace, NewtonWork* work) {
-  SolverSummary summary;
-  const int n = system.size();
-  BandedMatrix local;
-  BandedMatrix& J = workspace ? *workspace : local;
-  if (J.size() != n || J.lower() != system.lowerBandwidth() || J.upper() != system.upperBandwidth()) {
-    ForkJoin* const fork = J.parallel();  // (the workspace's threads stay with it)
-    J = BandedMatrix(n, system.lowerBandwidth(), system.upperBandwidth());
-    J.setParallel(fork);
+/// Newton's method with relaxation on a NewtonSystem (section 6): assemble, factor, solve for
+/// the update, measure it (eq. 39), relax (eqs. 40-41), update (eq. 38), check convergence. With
+/// options.reuse_jacobian, modified Newton: a factorization is kept while it contracts fast
+/// enough.
+class NewtonIteration {
+ public:
+  NewtonIteration(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options, BandedMatrix* workspace,
+                  NewtonWork* work)
+      : system_(system), Y_(Y), o_(options), work_(work), n_(system.size()), J_(workspace ? *workspace : local_),
+        mu_(options.mu0) {
+    prepareMatrix();
+    R_.resize(n_);
+    dY_.resize(n_);
+    inv_chi_.resize(n_);
+    for (int i = 0; i < n_; ++i) inv_chi_[i] = 1.0 / system_.scale(i);
+    // The vector work split as the elimination splits the nodes (eq. 39's sum in two parts then,
+    // with one thread or two), so that each half stays with the thread that assembles it.
+    const int nb = system_.blockSize();
+    split_ = system_.splitsUpdate() && J_.blockRow(0) && nb > 0 ? nb * BandedMatrix::meetingNode(n_ / nb) : 0;
+    fork_ = J_.parallel();
+    // Modified Newton: start from a factorization kept in the workspace (setBlockStructure leaves
+    // it when the structure is unchanged); otherwise, and whenever the kept one converges too
+    // slowly, assemble afresh.
+    fresh_ = !(o_.reuse_jacobian && J_.factorized());
+    mu_before_ = mu_;
+    dY_prev_.resize(o_.damp_two_cycles ? n_ : 0);
   }
-  J.setBlockStructure(system.blockSize(), system.leadingRows());
-  Eigen::VectorXd R(n), dY(n), inv_chi(n);
-  for (int i = 0; i < n; ++i) inv_chi[i] = 1.0 / system.scale(i);
-  // The vector work split as the elimination splits the nodes (eq. 39's sum in two parts then,
-  // with one thread or two), so that each half stays with the thread that assembles it.
-  const int nb = system.blockSize();
-  const int split = system.splitsUpdate() && J.blockRow(0) && nb > 0 ? nb * BandedMatrix::meetingNode(n / nb) : 0;
-  ForkJoin* const fork = J.parallel();
-  bool finite[2] = {true, true};
-  double mu = options.mu0;
-  double sigma_prev = 0.0;
-  int worst = 0;
-  NewtonWork counts;
-  // Modified Newton: start from a factorization kept in the workspace (setBlockStructure leaves
-  // it when the structure is unchanged); otherwise, and whenever the kept one converges too
-  // slowly, assemble afresh.
-  bool fresh = !(options.reuse_jacobian && J.factorized());
 
-  // Modified Newton bookkeeping: the iterate before the last update and the state of the
-  // iteration there, to go back to when that update was made with a kept Jacobian that turns
-  // out not to contract (the update itself may then have gone the wrong way).
-  Eigen::VectorXd Y_before;
-  double sigma_before = 0.0, mu_before = mu;
-  bool last_kept = false;
-  int k = 0;  // accepted updates
-  // Two-cycle damping: the update before (its direction), when there is one to compare with.
-  Eigen::VectorXd dY_prev(options.damp_two_cycles ? n : 0);
-  bool have_prev = false;
-  auto undoLastUpdate = [&]() {
-    Y = Y_before;
-    sigma_prev = sigma_before;
-    mu = mu_before;
-    --k;
-    last_kept = false;
-    have_prev = false;
-  };
-  while (k < options.max_iterations) {
-    const bool assembled = fresh;
-    if (fresh) {
-      // Assemble residual and Jacobian at the current iterate.
-      if (J.blockRow(0) && system.writesEveryBlockEntry()) J.beginAssembly();
-      else J.setZero();
-      system.evaluate(Y, R, &J);
-      ++counts.assemblies;
+  SolverSummary run() {
+    while (k_ < o_.max_iterations) {
+      const bool assembled = fresh_;
+      assemble(assembled);
+      if (!negateResidual()) {
+        if (!assembled && last_kept_) {  // a kept Jacobian's update went bad: back, and assemble
+          undoLastUpdate();
+          fresh_ = true;
+          continue;
+        }
+        return fail("residual is not finite at iteration " + std::to_string(k_));
+      }
+      if (fresh_ && !factor()) return summary_;
+      UpdateSum sums[2];
+      double limit[2] = {1.0, 1.0};
+      if (!solveUpdate(sums, limit)) {
+        if (!assembled) {  // a kept factorization gone bad: try a fresh one at this iterate
+          fresh_ = true;
+          continue;
+        }
+        return fail("Newton update is not finite at iteration " + std::to_string(k_));
+      }
+      // Error measure (eq. 39). (Without a split sums[1] is empty: sum 0, largest -1.)
+      const double sigma = (sums[0].sum + sums[1].sum) / static_cast<double>(n_);
+      worst_ = sums[1].largest > sums[0].largest ? sums[1].worst : sums[0].worst;
+      if (o_.reuse_jacobian && !assembled && k_ > 0 && sigma > o_.reuse_rate * sigma_prev_) {
+        // The kept Jacobian no longer contracts fast enough: assemble afresh and redo the update.
+        // When it made the last update too and the iteration grew (a Jacobian kept from an
+        // earlier call can be far off), that update is suspect: redo it from the iterate before.
+        if (last_kept_ && sigma > sigma_prev_) undoLastUpdate();
+        fresh_ = true;
+        continue;
+      }
+      relax(sigma, assembled);
+      update(relaxationApplied(sums, limit));
+      if (converged(sigma, assembled)) return finish();
+    }
+    return notConverged();
+  }
+
+ private:
+  /// The Newton matrix of the system's size, bandwidths and block structure.
+  void prepareMatrix() {
+    if (J_.size() != n_ || J_.lower() != system_.lowerBandwidth() || J_.upper() != system_.upperBandwidth()) {
+      ForkJoin* const fork = J_.parallel();  // (the workspace's threads stay with it)
+      J_ = BandedMatrix(n_, system_.lowerBandwidth(), system_.upperBandwidth());
+      J_.setParallel(fork);
+    }
+    J_.setBlockStructure(system_.blockSize(), system_.leadingRows());
+  }
+
+  /// The residual at the current iterate, with the Jacobian when `jacobian`.
+  void assemble(bool jacobian) {
+    if (jacobian) {
+      if (J_.blockRow(0) && system_.writesEveryBlockEntry()) J_.beginAssembly();
+      else J_.setZero();
+      system_.evaluate(Y_, R_, &J_);
+      ++counts_.assemblies;
     } else {
-      system.evaluate(Y, R, nullptr);
-      ++counts.residuals;
+      system_.evaluate(Y_, R_, nullptr);
+      ++counts_.residuals;
     }
-    // dY = -R here already (the factorization does not need it), with the finiteness check.
-    inParts(fork, split, n, [&](int first, int end, int part) {
-      finite[part] = allFinite(R, first, end);
-      dY.segment(first, end - first) = -R.segment(first, end - first);
+  }
+
+  /// dY = -R here already (the factorization does not need it); false when R is not finite.
+  bool negateResidual() {
+    bool finite[2] = {true, true};
+    inParts(fork_, split_, n_, [&](int first, int end, int part) {
+      finite[part] = allFinite(R_, first, end);
+      dY_.segment(first, end - first) = -R_.segment(first, end - first);
     });
-    if (!(finite[0] && finite[1])) {
-      if (!assembled && last_kept) {  // a kept Jacobian's update went bad: back, and assemble
-        undoLastUpdate();
-        fresh = true;
-        continue;
-      }
-      summary.iterations = k;
-      summary.message = "residual is not finite at iteration " + std::to_string(k);
-      if (work) *work = counts;
-      return summary;
+    return finite[0] && finite[1];
+  }
+
+  /// Factor the Newton matrix; false (the summary says which unknown) when it is singular.
+  bool factor() {
+    const int info = J_.factorize();
+    if (info != 0) {
+      fail("singular Newton matrix at iteration " + std::to_string(k_) + ", unknown " + system_.describe(info - 1));
+      return false;
     }
-    if (fresh) {
-      // Factor and solve for the Newton update dY = -J^{-1} R.
-      const int info = J.factorize();
-      if (info != 0) {
-        summary.iterations = k;
-        summary.message = "singular Newton matrix at iteration " + std::to_string(k) + ", unknown " +
-                          system.describe(info - 1);
-        if (work) *work = counts;
-        return summary;
-      }
-      fresh = !options.reuse_jacobian;  // plain Newton assembles at every iterate
-    }
-    J.solve(dY);
-    // Finiteness, the system's conditioning of the update, eq. 39's sum and the step limit.
-    UpdateSum sums[2];
-    double limit[2] = {1.0, 1.0};
-    inParts(fork, split, n, [&](int first, int end, int part) {
-      finite[part] = allFinite(dY, first, end);
+    fresh_ = !o_.reuse_jacobian;  // plain Newton assembles at every iterate
+    return true;
+  }
+
+  /// The Newton update dY = -J^{-1} R, conditioned by the system, its sum of eq. 39 and the
+  /// system's step limit, by parts; false when it is not finite.
+  bool solveUpdate(UpdateSum* sums, double* limit) {
+    J_.solve(dY_);
+    bool finite[2] = {true, true};
+    inParts(fork_, split_, n_, [&](int first, int end, int part) {
+      finite[part] = allFinite(dY_, first, end);
       if (!finite[part]) return;
-      system.conditionStep(Y, dY, first, end);  // (the whole vector when not split)
-      sums[part] = scaledUpdateSum(inv_chi, dY, first, end, have_prev ? &dY_prev : nullptr);
-      limit[part] = system.stepLimit(dY, first, end);
+      system_.conditionStep(Y_, dY_, first, end);  // (the whole vector when not split)
+      sums[part] = scaledUpdateSum(inv_chi_, dY_, first, end, have_prev_ ? &dY_prev_ : nullptr);
+      limit[part] = system_.stepLimit(dY_, first, end);
     });
-    if (!(finite[0] && finite[1])) {
-      if (!assembled) {  // a kept factorization gone bad: try a fresh one at this iterate
-        fresh = true;
-        continue;
-      }
-      summary.iterations = k;
-      summary.message = "Newton update is not finite at iteration " + std::to_string(k);
-      if (work) *work = counts;
-      return summary;
+    return finite[0] && finite[1];
+  }
+
+  /// Adaptive relaxation (eqs. 40-41) and the bookkeeping of the iteration before.
+  void relax(double sigma, bool assembled) {
+    if (o_.adaptive && k_ > 0) {
+      if (sigma > sigma_prev_) mu_ /= o_.R1;
+      else mu_ *= o_.R2;
+      mu_ = std::clamp(mu_, o_.mu0 / 1000.0, o_.mu0);
     }
-    // Error measure and adaptive relaxation (eqs. 39-41).
-    // (Without a split sums[1] is empty: sum 0, largest -1.)
-    const double sigma = (sums[0].sum + sums[1].sum) / static_cast<double>(n);
-    worst = sums[1].largest > sums[0].largest ? sums[1].worst : sums[0].worst;
-    if (options.reuse_jacobian && !assembled && k > 0 && sigma > options.reuse_rate * sigma_prev) {
-      // The kept Jacobian no longer contracts fast enough: assemble afresh and redo the update.
-      // When it made the last update too and the iteration grew (a Jacobian kept from an
-      // earlier call can be far off), that update is suspect: redo it from the iterate before.
-      if (last_kept && sigma > sigma_prev) undoLastUpdate();
-      fresh = true;
-      continue;
-    }
-    if (options.adaptive && k > 0) {
-      if (sigma > sigma_prev) mu /= options.R1;
-      else mu *= options.R2;
-      mu = std::clamp(mu, options.mu0 / 1000.0, options.mu0);
-    }
-    sigma_before = sigma_prev;
-    mu_before = mu;
-    if (options.reuse_jacobian) last_kept = !assembled;
-    sigma_prev = sigma;
+    sigma_before_ = sigma_prev_;
+    mu_before_ = mu_;
+    if (o_.reuse_jacobian) last_kept_ = !assembled;
+    sigma_prev_ = sigma;
     if (std::getenv("MD_NEWTON_TRACE"))
-      std::fprintf(stderr, "newton %d sigma %.3e mu %.3e worst %s dY %.3e%s\n", k, sigma, mu,
-                   system.describe(worst).c_str(), dY[worst], assembled ? "" : " (kept Jacobian)");
-    double applied = std::min(mu, std::min(limit[0], limit[1]));
-    if (have_prev) {
+      std::fprintf(stderr, "newton %d sigma %.3e mu %.3e worst %s dY %.3e%s\n", k_, sigma, mu_,
+                   system_.describe(worst_).c_str(), dY_[worst_], assembled ? "" : " (kept Jacobian)");
+  }
+
+  /// The factor the update is applied with: mu within the step limits, halved on a two-cycle.
+  double relaxationApplied(const UpdateSum* sums, const double* limit) const {
+    double applied = std::min(mu_, std::min(limit[0], limit[1]));
+    if (have_prev_) {
       // An update that undoes the one before (cosine of the scaled updates below
       // -kTwoCycleCosine, and at least kTwoCycleRatio of its length: a shrinking alternation
       // is convergence) is a two-cycle across a kink, a touchdown node in and out of contact:
@@ -203,41 +215,106 @@ SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const Newton
       if (dot < -kTwoCycleCosine * std::sqrt(now2 * before2) && now2 > kTwoCycleRatio * kTwoCycleRatio * before2)
         applied *= 0.5;
     }
+    return applied;
+  }
 
-    if (options.reuse_jacobian) Y_before.resize(n);
-    inParts(fork, split, n, [&](int first, int end, int) {
-      if (options.reuse_jacobian) Y_before.segment(first, end - first) = Y.segment(first, end - first);
-      Y.segment(first, end - first) += applied * dY.segment(first, end - first);  // eq. 38
+  /// Y += applied dY (eq. 38), keeping the iterate before for modified Newton.
+  void update(double applied) {
+    if (o_.reuse_jacobian) Y_before_.resize(n_);
+    inParts(fork_, split_, n_, [&](int first, int end, int) {
+      if (o_.reuse_jacobian) Y_before_.segment(first, end - first) = Y_.segment(first, end - first);
+      Y_.segment(first, end - first) += applied * dY_.segment(first, end - first);  // eq. 38
     });
-    if (options.damp_two_cycles) {
-      dY_prev.swap(dY);  // (dY is rewritten from -R in the next iteration)
-      have_prev = true;
-    }
-    ++k;
-    summary.iterations = k;
-    summary.error = sigma;
-    summary.relaxation = mu;
-    const double theta = k > 1 ? sigma / sigma_before : 1.0;  // sigma_before: the update before
-    // (Updates with a fresh Jacobian only: Newton's quadratic contraction makes the estimate
-    // an upper bound, the linear one of a kept Jacobian does not.)
-    const bool estimated = options.estimate_convergence && assembled && k > 1 && theta < options.estimate_max_theta &&
-                           theta / (1.0 - theta) * sigma < options.tolerance;
-    if (sigma < options.tolerance || estimated) {
-      summary.converged = true;
-      std::ostringstream os;
-      os << "converged in " << summary.iterations << " iterations (sigma = " << sigma << ")";
-      summary.message = os.str();
-      if (work) *work = counts;
-      return summary;
+    if (o_.damp_two_cycles) {
+      dY_prev_.swap(dY_);  // (dY is rewritten from -R in the next iteration)
+      have_prev_ = true;
     }
   }
-  if (work) *work = counts;
-  std::ostringstream os;
-  os << "did not converge in " << options.max_iterations << " iterations: sigma = " << summary.error
-     << " (tolerance " << options.tolerance << "), relaxation " << mu << "; largest update at "
-     << system.describe(worst);
-  summary.message = os.str();
-  return summary;
+
+  /// After update k: sigma below the tolerance, or (with a fresh Jacobian) the contraction's
+  /// estimate of the remaining error below it.
+  bool converged(double sigma, bool assembled) {
+    ++k_;
+    summary_.iterations = k_;
+    summary_.error = sigma;
+    summary_.relaxation = mu_;
+    const double theta = k_ > 1 ? sigma / sigma_before_ : 1.0;  // sigma_before: the update before
+    // (Updates with a fresh Jacobian only: Newton's quadratic contraction makes the estimate
+    // an upper bound, the linear one of a kept Jacobian does not.)
+    const bool estimated = o_.estimate_convergence && assembled && k_ > 1 && theta < o_.estimate_max_theta &&
+                           theta / (1.0 - theta) * sigma < o_.tolerance;
+    return sigma < o_.tolerance || estimated;
+  }
+
+  /// Back to the iterate before the last update (made with a kept Jacobian).
+  void undoLastUpdate() {
+    Y_ = Y_before_;
+    sigma_prev_ = sigma_before_;
+    mu_ = mu_before_;
+    --k_;
+    last_kept_ = false;
+    have_prev_ = false;
+  }
+
+  SolverSummary finish() {
+    summary_.converged = true;
+    std::ostringstream os;
+    os << "converged in " << summary_.iterations << " iterations (sigma = " << summary_.error << ")";
+    summary_.message = os.str();
+    if (work_) *work_ = counts_;
+    return summary_;
+  }
+
+  SolverSummary fail(const std::string& message) {
+    summary_.iterations = k_;
+    summary_.message = message;
+    if (work_) *work_ = counts_;
+    return summary_;
+  }
+
+  SolverSummary notConverged() {
+    if (work_) *work_ = counts_;
+    std::ostringstream os;
+    os << "did not converge in " << o_.max_iterations << " iterations: sigma = " << summary_.error
+       << " (tolerance " << o_.tolerance << "), relaxation " << mu_ << "; largest update at "
+       << system_.describe(worst_);
+    summary_.message = os.str();
+    return summary_;
+  }
+
+  NewtonSystem& system_;
+  Eigen::VectorXd& Y_;
+  const NewtonOptions& o_;
+  NewtonWork* work_;
+  const int n_;
+  BandedMatrix local_;  ///< the Newton matrix when the caller gives no workspace
+  BandedMatrix& J_;
+  Eigen::VectorXd R_, dY_, inv_chi_;
+  int split_ = 0;  ///< first unknown of the second part of the vector work (0: one part)
+  ForkJoin* fork_ = nullptr;
+  SolverSummary summary_;
+  NewtonWork counts_;
+  double mu_;
+  double sigma_prev_ = 0.0;
+  int worst_ = 0;
+  bool fresh_ = true;  ///< assemble and factor at the next iterate
+  // Modified Newton bookkeeping: the iterate before the last update and the state of the
+  // iteration there, to go back to when that update was made with a kept Jacobian that turns
+  // out not to contract (the update itself may then have gone the wrong way).
+  Eigen::VectorXd Y_before_;
+  double sigma_before_ = 0.0, mu_before_ = 0.0;
+  bool last_kept_ = false;
+  int k_ = 0;  ///< accepted updates
+  // Two-cycle damping: the update before (its direction), when there is one to compare with.
+  Eigen::VectorXd dY_prev_;
+  bool have_prev_ = false;
+};
+
+}  // namespace
+
+SolverSummary solveNewton(NewtonSystem& system, Eigen::VectorXd& Y, const NewtonOptions& options,
+                          BandedMatrix* workspace, NewtonWork* work) {
+  return NewtonIteration(system, Y, options, workspace, work).run();
 }
 
 JacobianCheck checkJacobian(NewtonSystem& system, const Eigen::VectorXd& Y) {

@@ -170,6 +170,13 @@ MD_WAVE_SIMD_CLONES void referenceSums(const double* __restrict coef, const doub
 
 }  // namespace
 
+// One component's constants before sorting: the depth factors as A (E+ +- E-) with
+// E+- = e^{+-k (z + o+-)}: deep water (1 - e^{-2kh})^{-1} (e^{kz} +- e^{-k(z + 2h)}), else
+// (2 sinh kh)^{-1} (e^{k(z + h)} +- e^{-k(z + h)}); every exponent stays in range.
+struct WaveVelocityCache::Component {
+  double k, kx, omega, phase, aw, cd, A, op, om, z_skip, coth;
+};
+
 WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points, bool horizontal_plane,
                                      bool across_times)
     : field_(field), plane_(horizontal_plane), across_times_(across_times) {
@@ -187,18 +194,24 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points,
     sin_dir_ = std::sin(direction_);
   }
   np_ = (nc_ + kGroup - 1) / kGroup * kGroup;
+  const std::vector<Component> comps = sortedComponents();
+  // Bound on the velocity's third derivatives (linearRadius).
+  double g3 = 0.0;
+  for (const Component& c : comps) g3 += std::abs(c.aw) * c.k * c.k * c.k * c.coth;
+  const double third = 2.0 * std::sqrt(2.0) * g3 / 6.0;
+  lin_radius_ = third > 0.0 ? std::cbrt(kLinearTolerance / third) : 0.0;
+  fillTables(comps);
+  allocatePoints(points);
+}
+
+std::vector<WaveVelocityCache::Component> WaveVelocityCache::sortedComponents() const {
+  const WaveField& f = *field_;
   const double h = f.depth_;
-  // One component's constants before sorting: the depth factors as A (E+ +- E-) with
-  // E+- = e^{+-k (z + o+-)}: deep water (1 - e^{-2kh})^{-1} (e^{kz} +- e^{-k(z + 2h)}), else
-  // (2 sinh kh)^{-1} (e^{k(z + h)} +- e^{-k(z + h)}); every exponent stays in range.
-  struct Comp {
-    double k, kx, omega, phase, aw, cd, A, op, om, z_skip, coth;
-  };
-  std::vector<Comp> comps;
+  std::vector<Component> comps;
   for (std::size_t i = 0; i < nc_; ++i) {
     const WaveComponent& c = f.components_[i];
     const WaveField::Kinematics& q = f.kin_[i];
-    Comp m{};
+    Component m{};
     m.k = c.k;
     // Along x (the x-z plane: the velocity's x component) or along the direction of travel (the
     // horizontal velocity, split into x and y by velocity3).
@@ -226,12 +239,12 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points,
     }
     comps.push_back(m);
   }
-  std::stable_sort(comps.begin(), comps.end(), [](const Comp& a, const Comp& b) { return a.z_skip < b.z_skip; });
-  // Bound on the velocity's third derivatives (linearRadius).
-  double g3 = 0.0;
-  for (const Comp& c : comps) g3 += std::abs(c.aw) * c.k * c.k * c.k * c.coth;
-  const double third = 2.0 * std::sqrt(2.0) * g3 / 6.0;
-  lin_radius_ = third > 0.0 ? std::cbrt(kLinearTolerance / third) : 0.0;
+  std::stable_sort(comps.begin(), comps.end(),
+                   [](const Component& a, const Component& b) { return a.z_skip < b.z_skip; });
+  return comps;
+}
+
+void WaveVelocityCache::fillTables(const std::vector<Component>& comps) {
   // Structure of arrays, padded with zero terms (skipped by no point: z_skip = +inf).
   for (auto* v : {&k_, &kx_, &op_, &om_, &omega_, &phase_}) v->assign(np_, 0.0);
   z_skip_.assign(np_, std::numeric_limits<double>::infinity());
@@ -243,7 +256,7 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points,
   double* const coef = coefData();
   for (std::size_t i = 0; i < np_; ++i) coef[coefIndex(i, kRowCosA)] = 1.0;
   for (std::size_t i = 0; i < nc_; ++i) {
-    const Comp& c = comps[i];
+    const Component& c = comps[i];
     k_[i] = c.k;
     kx_[i] = c.kx;
     op_[i] = c.op;
@@ -270,6 +283,9 @@ WaveVelocityCache::WaveVelocityCache(const WaveField* field, std::size_t points,
     kx_upto_[i] = kx_max_;
     k_upto_[i] = k_max_;
   }
+}
+
+void WaveVelocityCache::allocatePoints(std::size_t points) {
   exact_.assign(points, Exact{});
   x_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());
   z_ref_.assign(points, std::numeric_limits<double>::quiet_NaN());

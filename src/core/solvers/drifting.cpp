@@ -107,6 +107,115 @@ std::string velocityText(const double* V) {
 
 }  // namespace
 
+namespace {
+
+/// The 2 x 2 Jacobian dG/dV of the buoy's horizontal force balance by one-sided differences of
+/// fd_step, each solve warm-started from Y; false when a solve does not converge.
+bool driftJacobian(DriftSolver& ds, const double* V, const Eigen::VectorXd& Y, const double* G, double fd_step,
+                   double (&J)[2][2]) {
+  bool ok = true;
+  for (int k = 0; k < 2 && ok; ++k) {
+    double Vk[2] = {V[0], V[1]}, Gk[2];
+    Vk[k] += fd_step;
+    Eigen::VectorXd Yk = Y;
+    ok = ds.solveAt(Vk, Yk, Gk).converged;
+    J[0][k] = (Gk[0] - G[0]) / fd_step;
+    J[1][k] = (Gk[1] - G[1]) / fd_step;
+  }
+  return ok;
+}
+
+/// Backtracking along the Newton update dV: halved until the force balance improves; on success
+/// V, Y, G and the inner summary move to the new drift velocity.
+bool backtrackDrift(DriftSolver& ds, double* dV, double* V, Eigen::VectorXd& Y, double* G, SolverSummary& inner) {
+  const double g0 = std::hypot(G[0], G[1]);
+  for (int h = 0; h < 20; ++h) {
+    double Vn[2] = {V[0] + dV[0], V[1] + dV[1]}, Gn[2];
+    Eigen::VectorXd Yk = Y;
+    const SolverSummary sn = ds.solveAt(Vn, Yk, Gn);
+    if (sn.converged && std::hypot(Gn[0], Gn[1]) < g0) {
+      V[0] = Vn[0];
+      V[1] = Vn[1];
+      G[0] = Gn[0];
+      G[1] = Gn[1];
+      Y = Yk;
+      inner = sn;
+      return true;
+    }
+    dV[0] *= 0.5;
+    dV[1] *= 0.5;
+  }
+  return false;
+}
+
+/// The outer iteration's state: drift velocity V [m/s], the statics Y there, the balance G [N].
+struct Drift {
+  double V[2] = {0.0, 0.0};
+  Eigen::VectorXd Y;
+  double G[2] = {0.0, 0.0};
+  SolverSummary inner;  ///< the last accepted static solve
+  bool converged = false;
+  int outer = 0;        ///< outer iterations
+  std::string why;      ///< why the outer iteration stopped early
+};
+
+/// Newton on G(V) = 0 from d's start until G is within Gtol or the update is small.
+void iterateDrift(DriftSolver& ds, const DriftOptions& drift, double Gtol, Drift& d) {
+  while (d.inner.converged && !d.converged && d.outer < drift.max_iterations) {
+    if (std::hypot(d.G[0], d.G[1]) <= Gtol) {
+      d.converged = true;
+      break;
+    }
+    ++d.outer;
+    double J[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+    const bool ok = driftJacobian(ds, d.V, d.Y, d.G, drift.fd_step, J);
+    const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    if (!ok || !(std::abs(det) > 0.0) || !std::isfinite(det)) {
+      d.why = ok ? "the drift Jacobian dG/dV is singular (no horizontal force depends on the drift velocity)"
+                 : "a static solve of the finite-difference Jacobian did not converge";
+      break;
+    }
+    double dV[2] = {-(J[1][1] * d.G[0] - J[0][1] * d.G[1]) / det, -(-J[1][0] * d.G[0] + J[0][0] * d.G[1]) / det};
+    const bool small_update = std::hypot(dV[0], dV[1]) < drift.velocity_tolerance;  // the full Newton update
+    if (!backtrackDrift(ds, dV, d.V, d.Y, d.G, d.inner)) {
+      d.why = "no reduction of the buoy's horizontal force balance along the Newton update of the drift velocity";
+      break;
+    }
+    if (small_update) d.converged = true;
+  }
+}
+
+/// The result at the last drift velocity, its summary saying how both iterations ended.
+StaticState3D driftResult(const Problem& problem, const Mesh& mesh, const DriftSolver& ds, const DriftOptions& drift,
+                          Drift& d) {
+  StaticState3D out;
+  out.Y = d.Y;
+  out.result = staticResult3DFromState(problem, mesh, d.Y);
+  out.result.drifting = true;
+  out.result.drift_vx = d.V[0];
+  out.result.drift_vy = d.V[1];
+  out.result.summary = d.inner;
+  out.result.summary.iterations = ds.inner_iterations;
+  std::ostringstream msg;
+  if (!d.inner.converged) {
+    msg << d.inner.message << "; at drift velocity " << velocityText(d.V);
+    out.result.summary.converged = false;
+  } else if (!d.converged) {
+    if (d.why.empty()) d.why = "not converged after " + std::to_string(drift.max_iterations) + " outer iterations";
+    msg << "steady drift: " << d.why << " (drift velocity " << velocityText(d.V) << ", horizontal force balance "
+        << std::hypot(d.G[0], d.G[1]) << " N)";
+    out.result.summary.converged = false;
+  } else {
+    msg << "steady drift " << velocityText(d.V) << " after " << d.outer << " outer iterations, " << ds.solves
+        << " static solves (horizontal force balance " << std::hypot(d.G[0], d.G[1]) << " N; last solve: "
+        << d.inner.message << ")";
+  }
+  out.result.summary.message = msg.str();
+  return out;
+}
+
+}  // namespace
+
 StaticState3D solveDriftStatic3D(const Problem& problem, const Mesh& mesh, const StaticOptions& options,
                                  const DriftOptions& drift) {
   const Environment& env = problem.environment;
@@ -114,92 +223,12 @@ StaticState3D solveDriftStatic3D(const Problem& problem, const Mesh& mesh, const
   DriftSolver ds{problem, mesh, newtonOptions(options), keelGuess(env, problem.top.buoy, pull)};
   const double Fscale = std::max(1.0, std::abs(pull) + problem.top.buoy.mass * env.gravity);
   const double Gtol = drift.force_tolerance * Fscale;
-
   // Start at the surface current: a drifter in a uniform current and no wind drifts with it.
-  double V[2];
-  env.currentAt(0.0, V[0], V[1]);
-  Eigen::VectorXd Y, Yk;
-  double G[2], Gk[2];
-  SolverSummary inner = ds.solveAt(V, Y, G);
-  bool converged = false;
-  int outer = 0;
-  std::string why;
-  while (inner.converged && !converged && outer < drift.max_iterations) {
-    if (std::hypot(G[0], G[1]) <= Gtol) {
-      converged = true;
-      break;
-    }
-    ++outer;
-    // 2 x 2 Jacobian dG/dV by one-sided differences, warm-started from the current state.
-    double J[2][2];
-    bool ok = true;
-    for (int k = 0; k < 2 && ok; ++k) {
-      double Vk[2] = {V[0], V[1]};
-      Vk[k] += drift.fd_step;
-      Yk = Y;
-      ok = ds.solveAt(Vk, Yk, Gk).converged;
-      J[0][k] = (Gk[0] - G[0]) / drift.fd_step;
-      J[1][k] = (Gk[1] - G[1]) / drift.fd_step;
-    }
-    const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    if (!ok || !(std::abs(det) > 0.0) || !std::isfinite(det)) {
-      why = ok ? "the drift Jacobian dG/dV is singular (no horizontal force depends on the drift velocity)"
-               : "a static solve of the finite-difference Jacobian did not converge";
-      break;
-    }
-    double dV[2] = {-(J[1][1] * G[0] - J[0][1] * G[1]) / det, -(-J[1][0] * G[0] + J[0][0] * G[1]) / det};
-    const bool small_update = std::hypot(dV[0], dV[1]) < drift.velocity_tolerance;  // the full Newton update
-    // Backtracking: halve the update until the force balance improves.
-    const double g0 = std::hypot(G[0], G[1]);
-    bool accepted = false;
-    for (int h = 0; h < 20 && !accepted; ++h) {
-      double Vn[2] = {V[0] + dV[0], V[1] + dV[1]}, Gn[2];
-      Yk = Y;
-      const SolverSummary sn = ds.solveAt(Vn, Yk, Gn);
-      if (sn.converged && std::hypot(Gn[0], Gn[1]) < g0) {
-        V[0] = Vn[0];
-        V[1] = Vn[1];
-        G[0] = Gn[0];
-        G[1] = Gn[1];
-        Y = Yk;
-        inner = sn;
-        accepted = true;
-      } else {
-        dV[0] *= 0.5;
-        dV[1] *= 0.5;
-      }
-    }
-    if (!accepted) {
-      why = "no reduction of the buoy's horizontal force balance along the Newton update of the drift velocity";
-      break;
-    }
-    if (small_update) converged = true;
-  }
-
-  StaticState3D out;
-  out.Y = Y;
-  out.result = staticResult3DFromState(problem, mesh, Y);
-  out.result.drifting = true;
-  out.result.drift_vx = V[0];
-  out.result.drift_vy = V[1];
-  out.result.summary = inner;
-  out.result.summary.iterations = ds.inner_iterations;
-  std::ostringstream msg;
-  if (!inner.converged) {
-    msg << inner.message << "; at drift velocity " << velocityText(V);
-    out.result.summary.converged = false;
-  } else if (!converged) {
-    if (why.empty()) why = "not converged after " + std::to_string(drift.max_iterations) + " outer iterations";
-    msg << "steady drift: " << why << " (drift velocity " << velocityText(V) << ", horizontal force balance "
-        << std::hypot(G[0], G[1]) << " N)";
-    out.result.summary.converged = false;
-  } else {
-    msg << "steady drift " << velocityText(V) << " after " << outer << " outer iterations, " << ds.solves
-        << " static solves (horizontal force balance " << std::hypot(G[0], G[1]) << " N; last solve: " << inner.message
-        << ")";
-  }
-  out.result.summary.message = msg.str();
-  return out;
+  Drift d;
+  env.currentAt(0.0, d.V[0], d.V[1]);
+  d.inner = ds.solveAt(d.V, d.Y, d.G);
+  iterateDrift(ds, drift, Gtol, d);
+  return driftResult(problem, mesh, ds, drift, d);
 }
 
 }  // namespace core

@@ -10,7 +10,9 @@
 #include "mooring_dynamics/core/solvers/adaptive_mesh.hpp"
 #include "mooring_dynamics/core/solvers/dynamic_run.hpp"
 #include "mooring_dynamics/core/equations/dynamic_interval.hpp"
+#include "mooring_dynamics/core/equations/end_conditions.hpp"
 #include "mooring_dynamics/core/equations/equations2d_dynamic.hpp"
+#include "mooring_dynamics/core/numerics/ad_rows.hpp"
 #include "mooring_dynamics/core/numerics/fork_join.hpp"
 #include "mooring_dynamics/core/equations/mesh.hpp"
 #include "mooring_dynamics/core/numerics/newton.hpp"
@@ -27,9 +29,20 @@ namespace {
 
 using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
 using AD8 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
-constexpr int kAnchorRows = 5;
-constexpr int kTopRows = 3;
 const char* const kVarNames[N] = {"eps", "Sn", "u", "v", "phi", "Omega3", "x", "z"};
+
+/// The top's input as the end conditions take it (y = 0 in 2-D).
+TopState topState(const TopInput& in) {
+  TopState s;
+  s.force = in.force;
+  s.x = in.x;
+  s.z = in.z;
+  s.vx = in.vx;
+  s.vz = in.vz;
+  s.fx = in.fx;
+  s.fz = in.fz;
+  return s;
+}
 
 }  // namespace
 
@@ -48,6 +61,8 @@ struct DynamicSolver2D::Impl {
   DynamicOptions opt;
   std::function<TopInput(double)> top;
   StaticResult statics;
+  /// The anchor and the top (end_conditions.hpp): their rows at nodes 0 and n - 1.
+  std::unique_ptr<EndCondition2D> lower, upper;
 
   // Accepted state at time t.
   double t = 0.0;
@@ -168,15 +183,15 @@ struct DynamicSolver2D::Impl {
 class DynamicStepSystem : public NewtonSystem {
  public:
   DynamicStepSystem(const DynamicSolver2D::Impl& im, double t_new, double dt, const TopInput& top)
-      : im_(im), t_(t_new), dt_(dt), top_(top) {
-  }
+      : im_(im), t_(t_new), dt_(dt), input_(topState(top)), end_rows_(im.lower->dynamicRows()) {}
 
   int size() const override { return N * im_.nodes(); }
-  int lowerBandwidth() const override { return 12; }
-  int upperBandwidth() const override { return 10; }
+  // Interval j's rows start at end_rows_ + N j and touch nodes j, j + 1 (kl = 12, ku = 10).
+  int lowerBandwidth() const override { return end_rows_ + N - 1; }
+  int upperBandwidth() const override { return 2 * N - 1 - end_rows_; }
   // Node-by-node elimination of the same matrix (every row couples node j and j + 1 only).
   int blockSize() const override { return N; }
-  int leadingRows() const override { return kAnchorRows; }
+  int leadingRows() const override { return end_rows_; }
   double scale(int i) const override { return im_.chi[i % N]; }
   std::string describe(int i) const override {
     const std::size_t j = static_cast<std::size_t>(i / N);
@@ -214,165 +229,152 @@ class DynamicStepSystem : public NewtonSystem {
 
   void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override {
     const int n = im_.nodes();
-    const GeneralizedAlpha& ga = im_.ga;
-    const double am = ga.alpha_m, ak = ga.alpha_k, g = ga.gamma;
-    const double c1 = 1.0 / (g * dt_), c0 = (1.0 - g) / g;  // Yd = c1 (Y - Yp) - c0 Ydp  (eq. 26)
     R.resize(size());
-    const Eigen::VectorXd& Yp = im_.Y;
-    const Eigen::VectorXd& Ydp = im_.Yd;
-
-    // Anchor (eq. 34): no motion, moment free, fixed position.
-    R[0] = Y[U];
-    R[1] = Y[V];
-    R[2] = Y[OMEGA];
-    R[3] = Y[X] - im_.problem.anchor_x;
-    R[4] = Y[Z] - im_.problem.anchor_z;
-    if (J) {
-      J->setZeroRows(0, kAnchorRows);
-      J->at(0, U) = 1.0;
-      J->at(1, V) = 1.0;
-      J->at(2, OMEGA) = 1.0;
-      J->at(3, X) = 1.0;
-      J->at(4, Z) = 1.0;
-    }
-
+    endRows(*im_.lower, 0, 0, Y, R, J);  // the anchor (eq. 34)
     // The line in two halves, nodes [0, m) and [m, n), as the Newton matrix's two-ended
     // elimination splits it (both on im_.fork when there is one: each thread then assembles
     // the rows it eliminates).
     const int m = BandedMatrix::meetingNode(n);
+    nodeValues(Y, m);
+    intervalRows(Y, R, J, m);
+    endRows(*im_.upper, end_rows_ + N * (n - 1), N * (n - 1), Y, R, J);  // the top (eq. 34)
+  }
+
+  /// alpha_m, alpha_k of the scheme and the rate of eq. 26, Yd = c1 (Y - Yp) - c0 Ydp.
+  AlphaWeights weights() const {
+    const GeneralizedAlpha& ga = im_.ga;
+    const double g = ga.gamma;
+    return {ga.alpha_m, ga.alpha_k, 1.0 / (g * dt_), (1.0 - g) / g};
+  }
+
+  /// Water at every node, weighted rates (eq. 30) and cos, sin of the inclination at iterate Y.
+  /// Shared out as the threads go (sharedHalves), from the static shape's guess: every node's
+  /// values are its own, whichever thread computes them.
+  void nodeValues(const Eigen::VectorXd& Y, int m) {
+    const int n = im_.nodes();
+    const AlphaWeights w = weights();
+    const double am = w.am, c1 = w.c1, c0 = w.c0;
+    const Eigen::VectorXd& Yp = im_.Y;
+    const Eigen::VectorXd& Ydp = im_.Yd;
     im_.wave_cache.setTime(t_);
     water_.resize(static_cast<std::size_t>(n));
     ydw_.resize(Y.size());
     c_.resize(static_cast<std::size_t>(n));
     s_.resize(static_cast<std::size_t>(n));
-    // Water at every node, weighted rates (eq. 30) and cos, sin of the inclination.
-    auto waterValues = [&](int j0, int j1) {
+    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.water_split, n, [&](int j0, int j1, bool) {
       for (int j = j0; j < j1; ++j) water_[static_cast<std::size_t>(j)] = im_.waterAt(j, Y[N * j + X], Y[N * j + Z]);
-    };
-    auto nodeValues = [&](int j0, int j1) {
       for (int j = j0; j < j1; ++j) {
         const std::size_t a = static_cast<std::size_t>(j);
         for (int k = N * j; k < N * (j + 1); ++k)
           ydw_[k] = (1.0 - am) * (c1 * (Y[k] - Yp[k]) - c0 * Ydp[k]) + am * Ydp[k];
         sinCos(Y[N * j + PHI], s_[a], c_[a]);
       }
-    };
-    // Shared out as the threads go (sharedHalves), from the static shape's guess: every node's
-    // values are its own, whichever thread computes them.
-    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.water_split, n, [&](int j0, int j1, bool) {
-      waterValues(j0, j1);
-      nodeValues(j0, j1);
     });
-
-    const StepWeights wts{ak, (1.0 - am) * c1};
-    std::vector<NodeTerms>& terms = im_.node_terms;
-    terms.resize(static_cast<std::size_t>(n));
-    terms_material_.assign(static_cast<std::size_t>(n), -1);  // none computed yet
-    // Intervals [j0, j1), a piece of sharedHalves: the terms of node j0 > 0 are also the piece
-    // below's (its last interval's upper node), so a piece computes them in a place of its own,
-    // unless it continues its thread's previous piece, which left them in `terms`.
-    auto intervals = [&](int j0, int j1, bool continued) {
-      double Jl[N][2 * N];
-      NodeTerms first_terms;
-      long first_material = -1;
-      for (int j = j0; j < j1; ++j) {
-        const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
-        const int row = kAnchorRows + N * j;
-        const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
-        if (iv.h > 0.0) {
-          // Interval rows with the hand-coded Jacobian (dynamic_interval.hpp), from the terms of
-          // its nodes, each computed once for the intervals of one material it belongs to.
-          const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
-          const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
-          const Material& m_iv = im_.problem.materials[iv.material];
-          auto termsOf = [&](std::size_t node, const NodeView& now) -> const NodeTerms& {
-            const bool own = j0 > 0 && !continued && node == static_cast<std::size_t>(j0);
-            long& material = own ? first_material : terms_material_[node];
-            NodeTerms& t = own ? first_terms : terms[node];
-            if (material != static_cast<long>(iv.material)) {
-              const NodeView prev{Yp.data() + N * node, im_.cos_phi[node], im_.sin_phi[node], &im_.water[node]};
-              nodeStepTerms(im_.problem.environment, m_iv, now, prev, ydw_.data() + N * node, wts, J != nullptr, t);
-              material = static_cast<long>(iv.material);
-            }
-            return t;
-          };
-          const NodeTerms& ta = termsOf(a, na);
-          const NodeTerms& tb = termsOf(b, nb);
-          // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
-          double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
-          intervalStepRows(m_iv, iv.h, na, nb, ta, tb, wts, im_.S.data() + N * j, R.data() + row, J ? Jrows : nullptr);
-          if (J && Jrows == Jl)
-            for (int q = 0; q < N; ++q)
-              for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
-          continue;
-        }
-        // Junction (pin) rows: few, left to automatic differentiation; in double when only the
-        // residual is asked for.
-        if (J) {
-          AD16 r[N];
-          junctionRows(j, iv, Y, c1, c0, r);
-          // With the block structure the 8 rows of 16 entries are written whole (a zero as +0,
-          // as clearing the rows would leave it), else the non-zero entries after clearing.
-          double* const rows = J->blockRow(row);
-          if (!rows) J->setZeroRows(row, N);
-          for (int q = 0; q < N; ++q) {
-            R[row + q] = r[q].value();
-            for (int k = 0; k < 2 * N; ++k) {
-              const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
-              if (rows) rows[2 * N * q + k] = d != 0.0 ? d : 0.0;
-              else if (d != 0.0) J->at(row + q, N * j + k) = d;
-            }
-          }
-        } else {
-          junctionRows(j, iv, Y, c1, c0, R.data() + row);
-        }
-      }
-    };
-    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.interval_split, n - 1, intervals);
-    topRows(Y, R, J);
   }
 
-  /// The top's rows: moment free, plus prescribed velocity (eq. 34), position or force.
-  void topRows(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) const {
+  /// Every interval's rows (eq. 30 on eq. 11), shared out from interval_split (sharedHalves).
+  void intervalRows(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J, int m) {
     const int n = im_.nodes();
-    const int top = N * (n - 1);
-    const int row = kAnchorRows + N * (n - 1);
-    AD8 y[N];
-    for (int k = 0; k < N; ++k) y[k] = AD8(Y[top + k], N, k);
-    AD8 r[kTopRows];
-    if (J) J->setZeroRows(row, kTopRows);
-    r[0] = y[OMEGA];
-    if (top_.force) {
-      AD8 Fx, Fz;
-      internalForce(im_.mat(n - 1), y, Fx, Fz);
-      r[1] = Fx - top_.fx;
-      r[2] = Fz - top_.fz;
-    } else if (im_.opt.top_motion.prescribe_position) {
-      // Velocity of eq. 34 with the position error fed back over a few steps: the top's
-      // position is a constraint on the integral of the line's shape from the anchor, which the
-      // generalized-alpha schemes with rho_inf > 0 do not damp when imposed directly (it blew up
-      // within a second, test_dynamics2d); fed back through the velocity it decays with
-      // time constant kPositionFeedbackSteps * dt (the BASE step: a cut step must not raise the
-      // gain, or an offset becomes a huge velocity) and the drift of the plain velocity
-      // condition vanishes.
-      constexpr double kPositionFeedbackSteps = 5.0;
-      const double kappa = 1.0 / (kPositionFeedbackSteps * im_.opt.dt);
-      AD8 Vx, Vz;
-      globalVelocity(y, Vx, Vz);
-      r[1] = Vx - top_.vx - kappa * (top_.x - y[X]);
-      r[2] = Vz - top_.vz - kappa * (top_.z - y[Z]);
-    } else {
-      AD8 Vx, Vz;
-      globalVelocity(y, Vx, Vz);
-      r[1] = Vx - top_.vx;
-      r[2] = Vz - top_.vz;
+    im_.node_terms.resize(static_cast<std::size_t>(n));
+    terms_material_.assign(static_cast<std::size_t>(n), -1);  // none computed yet
+    sharedHalves(im_.fork.get(), m == 0 ? 0 : im_.interval_split, n - 1,
+                 [&](int j0, int j1, bool continued) { intervalPiece(Y, R, J, j0, j1, continued); });
+  }
+
+  /// The terms of node j0 of a piece of sharedHalves, when j0 > 0: also the piece below's (its last
+  /// interval's upper node), so a piece computes them in a place of its own, unless it continues
+  /// its thread's previous piece, which left them in im_.node_terms.
+  struct PieceTerms {
+    int own_node = -1;  ///< the node whose terms are the piece's own (-1: none)
+    NodeTerms terms;
+    long material = -1;  ///< the material they were computed with (-1: none)
+  };
+
+  /// Intervals [j0, j1), a piece of sharedHalves.
+  void intervalPiece(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1, bool continued) {
+    const AlphaWeights w = weights();
+    const StepWeights wts{w.ak, (1.0 - w.am) * w.c1};
+    PieceTerms own;
+    own.own_node = j0 > 0 && !continued ? j0 : -1;
+    double Jl[N][2 * N];
+    for (int j = j0; j < j1; ++j) {
+      const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
+      if (iv.h > 0.0)
+        cableRows(j, iv, Y, R, J, wts, own, Jl);
+      else
+        junctionRowsInto(j, iv, Y, R, J, w);
     }
-    for (int q = 0; q < kTopRows; ++q) {
+  }
+
+  /// The terms of `node` (nodeStepTerms) for interval iv, computed once for the intervals of one
+  /// material the node belongs to.
+  const NodeTerms& termsOf(std::size_t node, const NodeView& now, const MeshInterval& iv, const StepWeights& wts,
+                           bool jacobian, PieceTerms& own) {
+    const bool is_own = node == static_cast<std::size_t>(own.own_node);
+    long& material = is_own ? own.material : terms_material_[node];
+    NodeTerms& t = is_own ? own.terms : im_.node_terms[node];
+    if (material != static_cast<long>(iv.material)) {
+      const NodeView prev{im_.Y.data() + N * node, im_.cos_phi[node], im_.sin_phi[node], &im_.water[node]};
+      nodeStepTerms(im_.problem.environment, im_.problem.materials[iv.material], now, prev, ydw_.data() + N * node,
+                    wts, jacobian, t);
+      material = static_cast<long>(iv.material);
+    }
+    return t;
+  }
+
+  /// Interval j's rows with the hand-coded Jacobian (dynamic_interval.hpp), from the terms of its
+  /// nodes; Jl: scratch rows when J has no block structure.
+  void cableRows(int j, const MeshInterval& iv, const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J,
+                 const StepWeights& wts, PieceTerms& own, double (&Jl)[N][2 * N]) {
+    const int row = end_rows_ + N * j;
+    const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
+    const NodeView na{Y.data() + N * j, c_[a], s_[a], &water_[a]};
+    const NodeView nb{Y.data() + N * (j + 1), c_[b], s_[b], &water_[b]};
+    const NodeTerms& ta = termsOf(a, na, iv, wts, J != nullptr, own);
+    const NodeTerms& tb = termsOf(b, nb, iv, wts, J != nullptr, own);
+    // With the block structure the interval's 8 rows of 16 entries are contiguous in J.
+    double(*Jrows)[2 * N] = J && J->blockRow(row) ? reinterpret_cast<double(*)[2 * N]>(J->blockRow(row)) : Jl;
+    intervalStepRows(im_.problem.materials[iv.material], iv.h, na, nb, ta, tb, wts, im_.S.data() + N * j,
+                     R.data() + row, J ? Jrows : nullptr);
+    if (J && Jrows == Jl)
+      for (int q = 0; q < N; ++q)
+        for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = Jl[q][k];
+  }
+
+  /// Junction (pin) rows of interval j: few, left to automatic differentiation; in double when
+  /// only the residual is asked for.
+  void junctionRowsInto(int j, const MeshInterval& iv, const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J,
+                        const AlphaWeights& w) const {
+    const int row = end_rows_ + N * j;
+    if (!J) {
+      junctionRows(j, iv, Y, w.c1, w.c0, R.data() + row);
+      return;
+    }
+    AD16 r[N];
+    junctionRows(j, iv, Y, w.c1, w.c0, r);
+    // With the block structure the 8 rows of 16 entries are written whole (a zero as +0, as
+    // clearing the rows would leave it), else the non-zero entries after clearing.
+    double* const rows = J->blockRow(row);
+    if (!rows) J->setZeroRows(row, N);
+    for (int q = 0; q < N; ++q) {
       R[row + q] = r[q].value();
-      if (J)
-        for (int k = 0; k < N; ++k)
-          if (r[q].derivatives()[k] != 0.0) J->at(row + q, top + k) = r[q].derivatives()[k];
+      for (int k = 0; k < 2 * N; ++k) {
+        const double d = r[q].derivatives().size() ? r[q].derivatives()[k] : 0.0;
+        if (rows) rows[2 * N * q + k] = d != 0.0 ? d : 0.0;
+        else if (d != 0.0) J->at(row + q, N * j + k) = d;
+      }
     }
+  }
+
+  /// The rows of an end (end_conditions.hpp) at the node whose unknowns start at col0, from row0.
+  void endRows(const EndCondition2D& end, int row0, int col0, const Eigen::VectorXd& Y, Eigen::VectorXd& R,
+               BandedMatrix* J) const {
+    const int rows = end.dynamicRows();
+    AD8 y[N], r[kMaxEndRows];
+    for (int k = 0; k < N; ++k) y[k] = AD8(Y[col0 + k], N, k);
+    if (J) J->setZeroRows(row0, rows);
+    end.dynamicResidual(input_, y, r);
+    scatter(r, rows, row0, col0, N, R, J);
   }
 
   /// Rows r[0..7] of junction interval j at iterate Y, in scalar type S (AD16 for the
@@ -441,7 +443,8 @@ class DynamicStepSystem : public NewtonSystem {
  private:
   const DynamicSolver2D::Impl& im_;
   double t_, dt_;
-  TopInput top_;
+  TopState input_;   ///< the top's prescribed motion or force at t_
+  int end_rows_;     ///< rows of the anchor, before the intervals'
   mutable std::vector<Water> water_;
   std::vector<double> c_, s_;     ///< cos, sin of phi at the current iterate
   Eigen::VectorXd ydw_;           ///< weighted rates (eq. 30) at the current iterate
@@ -471,13 +474,11 @@ Eigen::VectorXd stateFromStatic(const StaticResult& r) {
 
 }  // namespace
 
-DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
-  Impl& im = *impl_;
-  const std::string err = problem.validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  im.problem = problem;
-  im.opt = problem.dynamics;
-  im.ga = problem.dynamics.scheme;
+namespace {
+
+/// The static solution the run starts from (section 3: on the adaptive mesh of eq. 22 when the
+/// options ask), into im.mesh and im.statics.
+void solveStart(DynamicSolver2D::Impl& im, const Problem& problem) {
   // The dynamic equations have no static cap (eq. 35 caps statics only): start from the
   // equilibrium of the same seabed model so that the start is at rest.
   Problem start = problem;
@@ -492,16 +493,11 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   if (!im.statics.summary.converged)
     throw std::runtime_error("the static solution that starts the dynamic run did not converge: " +
                              im.statics.summary.message);
-  if (problem.environment.waves.type != WaveSpec::Type::None)
-    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
-  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
-  im.current = CurrentProfile(problem.environment.current);
-  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
-    im.fork = std::make_unique<ForkJoin>();
-    im.newton_matrix.setParallel(im.fork.get());
-  }
+}
 
-  // Top motion: the 3-D source projected on the x-z plane, started at the static top (y = 0).
+/// The top motion of the problem file: the 3-D source projected on the x-z plane, started at
+/// the static top (y = 0).
+void setTopMotion(DynamicSolver2D::Impl& im, const Problem& problem) {
   const NodeState& topNode = im.statics.nodes.back();
   const TopMotion& tm = problem.dynamics.top_motion;
   constexpr double kStartMismatch = 0.01;  // [m] a position table must start where statics put the top
@@ -520,12 +516,10 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
     in.fz = s.fz;
     return in;
   };
+}
 
-  im.t = 0.0;
-  im.Y = stateFromStatic(im.statics);
-  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
-  im.waterField(im.Y, 0.0, im.water);
-  im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
+/// Where the two threads are expected to meet in the node values and in the interval rows.
+void balanceThreads(DynamicSolver2D::Impl& im) {
   {
     // In the units of one component's sum (measured on A.2, one thread): a node's water without
     // the sum (the current table's look-ups, three then, the cache's bookkeeping), and its rates and
@@ -547,8 +541,10 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
     for (const MeshInterval& iv : im.mesh.intervals) cost.push_back(iv.h > 0.0 ? 1.0 : kJunctionWork);
     im.interval_split = balancedSplit(cost);
   }
+}
 
-  // Error scales chi_m of eq. 39.
+/// Error scales chi_m of eq. 39.
+void setErrorScales(DynamicSolver2D::Impl& im, const Problem& problem) {
   double Tc = 1.0, stiffest = 0.0;
   for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
   for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
@@ -558,6 +554,39 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   im.chi[PHI] = 1.0;            // [rad]
   im.chi[OMEGA] = 1.0 / std::max(im.mesh.minSpacing(), 1e-3);
   im.chi[X] = im.chi[Z] = 1.0;  // [m]
+}
+
+}  // namespace
+
+DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  const std::string err = problem.validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  im.problem = problem;
+  im.opt = problem.dynamics;
+  im.ga = problem.dynamics.scheme;
+  solveStart(im, problem);
+  im.lower = makeLowerEnd2D(im.problem);
+  im.upper = makeUpperEnd2D(im.problem, im.mat(im.nodes() - 1));
+  if (problem.environment.waves.type != WaveSpec::Type::None)
+    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
+  im.current = CurrentProfile(problem.environment.current);
+  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
+    im.fork = std::make_unique<ForkJoin>();
+    im.newton_matrix.setParallel(im.fork.get());
+  }
+  setTopMotion(im, problem);
+
+  // The start: the static shape at rest, with its water and spatial rows (the first step's
+  // previous level).
+  im.t = 0.0;
+  im.Y = stateFromStatic(im.statics);
+  im.Yd = Eigen::VectorXd::Zero(im.Y.size());
+  im.waterField(im.Y, 0.0, im.water);
+  im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
+  balanceThreads(im);
+  setErrorScales(im, problem);
 }
 
 DynamicSolver2D::~DynamicSolver2D() = default;

@@ -10,8 +10,8 @@
 #include "mooring_dynamics/core/solvers/drifting.hpp"
 #include "mooring_dynamics/core/solvers/dynamic_run.hpp"
 #include "mooring_dynamics/core/numerics/fork_join.hpp"
+#include "mooring_dynamics/core/equations/end_conditions.hpp"
 #include "mooring_dynamics/core/equations/equations3d.hpp"
-#include "mooring_dynamics/core/equations/equations3d_drifter.hpp"
 #include "mooring_dynamics/core/equations/mesh.hpp"
 #include "mooring_dynamics/core/numerics/newton.hpp"
 #include "mooring_dynamics/core/solvers/statics3d.hpp"
@@ -25,16 +25,6 @@ using namespace eq3d;
 namespace {
 using AD32 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
 using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
-// Rows at the ends: anchored, 10 at the anchor and 6 at the top; with a free lower end (towing),
-// 7 at the end (the body's force balance replaces rest and position) and 9 at the top (the tow
-// point's position as well as its velocity). A drifter (free end under a surface buoy) has the
-// same 7 and 9: at the top the buoy's force balance and the kinematics dx_n/dt = V_n.
-constexpr int kAnchorRows = 10;
-constexpr int kTopRows = 6;
-constexpr int kFreeEndRows = 7;
-constexpr int kTowTopRows = 9;
-constexpr int kMaxEndRows = 10;
-
 }  // namespace
 
 // ------------------------------------------------------------------------------------------------
@@ -48,15 +38,16 @@ struct DynamicSolver3D::Impl {
   GeneralizedAlpha ga;
   DynamicOptions opt;
   std::function<TopState(double)> top;
-  std::function<TopState(double)> bottom;  ///< moving anchor (position, velocity); empty: fixed
   StaticResult statics;
+  /// The lower end and the top (end_conditions.hpp): their rows at nodes 0 and n - 1 and the
+  /// state they carry between time levels. Anchored, 10 rows at the anchor and 6 at the top; with
+  /// a free lower end (towing, drifting) 7 at the end and 9 at the top.
+  std::unique_ptr<EndCondition3D> lower, upper;
 
   double t = 0.0;
   Eigen::VectorXd Y, Yd;        ///< accepted state and rate at time t
   std::vector<Water> water;     ///< water velocity at each node at time t
   Eigen::VectorXd S;            ///< spatial rows 0-5 of each interval at time t
-  double S_end[3] = {0.0, 0.0, 0.0};  ///< free lower end: spatial part of the body balance at time t
-  double S_top[3] = {0.0, 0.0, 0.0};  ///< subsurface top body or drifting buoy: spatial part of its balance at time t
   double chi[N];
   Totals totals;
   BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
@@ -113,20 +104,10 @@ struct DynamicSolver3D::Impl {
   }
 
   /// The parts of the end rows that eq. 30 weights in time, at state y and time `time`.
-  void endRows(const Eigen::VectorXd& y, const std::vector<Water>& w, double time) {
-    if (problem.lower_end == Problem::LowerEnd::Free) freeEndForces(problem, mat(0), y.data(), w[0], S_end);
-    if (problem.top.type == TopBoundary::Type::Body) {
-      const TopState in = top(time);
-      const double extra[3] = {in.force ? in.fx : 0.0, in.force ? in.fy : 0.0, in.force ? in.fz : 0.0};
-      const int n = nodes();
-      topBodyForces(problem, mat(n - 1), y.data() + N * (n - 1), w[static_cast<std::size_t>(n - 1)], extra, S_top);
-    }
-    if (isDrifter(problem)) {
-      const TopState in = top(time);
-      const double extra[3] = {in.force ? in.fx : 0.0, in.force ? in.fy : 0.0, in.force ? in.fz : 0.0};
-      driftBuoyForces(problem.environment, problem.top.buoy, mat(nodes() - 1), y.data() + N * (nodes() - 1), extra,
-                      S_top);
-    }
+  void acceptEndLevels(const Eigen::VectorXd& y, const std::vector<Water>& w, double time) {
+    const int n = nodes();
+    lower->acceptLevel(y.data(), w.front(), time, top);
+    upper->acceptLevel(y.data() + N * (n - 1), w[static_cast<std::size_t>(n - 1)], time, top);
   }
 };
 
@@ -137,9 +118,7 @@ struct DynamicSolver3D::Impl {
 class DynamicStepSystem3D : public NewtonSystem {
  public:
   DynamicStepSystem3D(const DynamicSolver3D::Impl& im, double t_new, double dt, const TopState& top)
-      : im_(im), t_(t_new), dt_(dt), top_(top),
-        towed_(im.problem.lower_end == Problem::LowerEnd::Free), drifter_(isDrifter(im.problem)),
-        end_rows_(towed_ ? kFreeEndRows : kAnchorRows), top_rows_(towed_ ? kTowTopRows : kTopRows) {}
+      : im_(im), t_(t_new), dt_(dt), top_(top), end_rows_(im.lower->dynamicRows()) {}
 
   int size() const override { return N * im_.nodes(); }
   // Interval j's rows start at end_rows_ + N j and touch nodes j, j + 1.
@@ -205,18 +184,15 @@ class DynamicStepSystem3D : public NewtonSystem {
       const int first = j0 == 0 ? 0 : end_rows_ + N * j0;
       const int last = j1 == n - 1 ? size() : end_rows_ + N * j1;
       if (J) J->setZeroRows(first, last - first);
-      if (j0 == 0) endRows<S16>(Yv, R, J);
+      if (j0 == 0) endRows<S16>(*im_.lower, 0, 0, Yv, R, J);
       intervalRows<S32>(Yv, R, J, j0, j1);
-      if (j1 == n - 1) topRows<S16>(Yv, R, J);
+      if (j1 == n - 1) endRows<S16>(*im_.upper, n - 1, end_rows_ + N * (n - 1), Yv, R, J);
     });
   }
 
   /// The generalized-alpha weights of the step: alpha_m, alpha_k, and the rate's
   /// Yd = c1 (Y - Yp) - c0 Ydp (eq. 26).
-  struct Weights {
-    double am, ak, c1, c0;
-  };
-  Weights weights() const {
+  AlphaWeights weights() const {
     const double g = im_.ga.gamma;
     return {im_.ga.alpha_m, im_.ga.alpha_k, 1.0 / (g * dt_), (1.0 - g) / g};
   }
@@ -224,60 +200,22 @@ class DynamicStepSystem3D : public NewtonSystem {
   /// Every entry of a block-structured J is written or cleared (setZeroRows), half by half.
   bool writesEveryBlockEntry() const override { return true; }
 
-  /// The lower end's rows (node 0).
+  /// The rows of an end (end_conditions.hpp) at `node`, from row0.
   template <class S16>
-  void endRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
-    const auto [am, ak, c1, c0] = weights();
-    const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
-
-    // Anchor (eq. 34 in 3-D): at rest, fixed, bending-moment free, unit frame, twist held. A free
-    // lower end (towing): the end body's force balance with its inertia, weighted in time like
-    // the junction force rows, then the same moment, frame and twist rows.
-    {
-      S16 y[N], r[kMaxEndRows];
-      for (int k = 0; k < N; ++k) y[k] = variable<S16>(Yv[k], N, k);
-      const double qp[4] = {Yp[Q0], Yp[Q1], Yp[Q2], Yp[Q3]};
-      int k0 = 0;
-      if (towed_) {
-        S16 yd[N], yp[N], in1[3], in0[3];
-        for (int k = 0; k < N; ++k) {
-          yd[k] = (1.0 - am) * (c1 * (y[k] - Yp[k]) - c0 * Ydp[k]) + am * Ydp[k];
-          yp[k] = constant<S16>(Yp[k]);
-        }
-        freeEndForces(im_.problem, im_.mat(0), y, water_[0], r);
-        freeEndInertia(im_.problem, y, yd, in1);
-        freeEndInertia(im_.problem, yp, yd, in0);
-        for (int q = 0; q < 3; ++q) r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S_end[q]);
-        k0 = 3;
-      } else {
-        if (im_.bottom) {
-          // A moving lower end (a line below a free point of a system): its velocity and
-          // position prescribed, as a fixed anchor's are.
-          const TopState b = im_.bottom(t_);
-          S16 V[3];
-          globalVelocity(y, V);
-          r[0] = V[0] - b.vx;
-          r[1] = V[1] - b.vy;
-          r[2] = V[2] - b.vz;
-          r[3] = y[X] - b.x;
-          r[4] = y[eq3d::Y] - b.y;
-          r[5] = y[Z] - b.z;
-        } else {
-          r[0] = y[U1];
-          r[1] = y[U2];
-          r[2] = y[U3];
-          r[3] = y[X] - im_.problem.anchor_x;
-          r[4] = y[eq3d::Y] - im_.problem.anchor_y;
-          r[5] = y[Z] - im_.problem.anchor_z;
-        }
-        k0 = 6;
-      }
-      r[k0] = y[O2];
-      r[k0 + 1] = y[O3];
-      r[k0 + 2] = normDefect(y);
-      r[k0 + 3] = twistGauge(qp, y);
-      scatter(r, end_rows_, 0, 0, N, R, J);
-    }
+  void endRows(const EndCondition3D& end, int node, int row0, const Eigen::VectorXd& Yv, Eigen::VectorXd& R,
+               BandedMatrix* J) const {
+    const int col0 = N * node;
+    S16 y[N], r[kMaxEndRows];
+    for (int k = 0; k < N; ++k) y[k] = variable<S16>(Yv[col0 + k], N, k);
+    DynamicEnd3D c;
+    c.t = t_;
+    c.input = &top_;
+    c.yp = im_.Y.data() + col0;
+    c.ydp = im_.Yd.data() + col0;
+    c.water = &water_[static_cast<std::size_t>(node)];
+    c.w = weights();
+    end.dynamicResidual(c, y, r);
+    scatter(r, end.dynamicRows(), row0, col0, N, R, J);
   }
 
   /// The rows of intervals [j0, j1).
@@ -323,123 +261,41 @@ class DynamicStepSystem3D : public NewtonSystem {
     }
   }
 
-  /// The top's rows (the last node).
-  template <class S16>
-  void topRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
-    const int n = im_.nodes();
-    const auto [am, ak, c1, c0] = weights();
-    const Environment& env = im_.problem.environment;
-    const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
-    // Top: moment free, plus prescribed velocity (eq. 34), velocity with position feedback, or
-    // force; a tow point (free lower end) also has its position prescribed.
-    const int top = N * (n - 1);
-    S16 y[N], r[kTowTopRows];
-    for (int k = 0; k < N; ++k) y[k] = variable<S16>(Yv[top + k], N, k);
-    r[0] = y[O1];
-    r[1] = y[O2];
-    r[2] = y[O3];
-    if (drifter_) {
-      // Drifting buoy: its force balance with inertia, weighted in time like the subsurface
-      // body's rows; then the top node's kinematics dx_n/dt = V_n in generalized-alpha form (the
-      // weighted rate of x_n against the alpha_k-weighted global velocity), which with both ends
-      // free is all that fixes where the line is.
-      S16 yd[N], ydw[N], yp[N], sp[3], in1[3], in0[3], V1[3], V0[3];
-      for (int k = 0; k < N; ++k) {
-        yd[k] = c1 * (y[k] - Yp[top + k]) - c0 * Ydp[top + k];
-        ydw[k] = (1.0 - am) * yd[k] + am * Ydp[top + k];
-        yp[k] = constant<S16>(Yp[top + k]);
-      }
-      const double extra[3] = {top_.force ? top_.fx : 0.0, top_.force ? top_.fy : 0.0, top_.force ? top_.fz : 0.0};
-      const SurfaceBuoy& b = im_.problem.top.buoy;
-      driftBuoyForces(env, b, im_.mat(n - 1), y, extra, sp);
-      driftBuoyInertia(b, y, ydw, in1);
-      driftBuoyInertia(b, yp, ydw, in0);
-      globalVelocity(y, V1);
-      globalVelocity(yp, V0);
-      for (int i = 0; i < 3; ++i) {
-        r[3 + i] = (1.0 - ak) * (in1[i] + sp[i]) + ak * (in0[i] + im_.S_top[i]);
-        r[6 + i] = ydw[X + i] - ((1.0 - ak) * V1[i] + ak * V0[i]);
-      }
-    } else if (im_.problem.top.type == TopBoundary::Type::Body) {
-      // Subsurface buoy: its force balance with inertia, weighted in time like the junction
-      // rows; a force table adds an external force on the body.
-      S16 yd[N], yp[N], sp[3], in1[3], in0[3];
-      for (int k = 0; k < N; ++k) {
-        yd[k] = (1.0 - am) * (c1 * (y[k] - Yp[top + k]) - c0 * Ydp[top + k]) + am * Ydp[top + k];
-        yp[k] = constant<S16>(Yp[top + k]);
-      }
-      const double extra[3] = {top_.force ? top_.fx : 0.0, top_.force ? top_.fy : 0.0, top_.force ? top_.fz : 0.0};
-      topBodyForces(im_.problem, im_.mat(n - 1), y, water_[static_cast<std::size_t>(n - 1)], extra, sp);
-      topBodyInertia(im_.problem, y, yd, in1);
-      topBodyInertia(im_.problem, yp, yd, in0);
-      for (int i = 0; i < 3; ++i) r[3 + i] = (1.0 - ak) * (in1[i] + sp[i]) + ak * (in0[i] + im_.S_top[i]);
-    } else if (top_.force) {
-      S16 F[3];
-      internalForce(im_.mat(n - 1), y, F);
-      r[3] = F[0] - top_.fx;
-      r[4] = F[1] - top_.fy;
-      r[5] = F[2] - top_.fz;
-    } else {
-      S16 V[3];
-      globalVelocity(y, V);
-      const double v[3] = {top_.vx, top_.vy, top_.vz};
-      const double x[3] = {top_.x, top_.y, top_.z};
-      // Position feedback over a few base steps, as in 2-D (docs/method.md, "Top boundary").
-      constexpr double kPositionFeedbackSteps = 5.0;
-      const double kappa = im_.opt.top_motion.prescribe_position && !towed_
-                               ? 1.0 / (kPositionFeedbackSteps * im_.opt.dt)
-                               : 0.0;
-      for (int i = 0; i < 3; ++i) r[3 + i] = V[i] - v[i] - kappa * (x[i] - y[X + i]);
-      if (towed_)
-        for (int i = 0; i < 3; ++i) r[6 + i] = y[X + i] - x[i];
-    }
-    scatter(r, top_rows_, end_rows_ + N * (n - 1), top, N, R, J);
-  }
-
   const std::vector<Water>& water() const { return water_; }
 
  private:
   const DynamicSolver3D::Impl& im_;
   double t_, dt_;
   TopState top_;
-  bool towed_;
-  bool drifter_;  ///< free end under a surface buoy: the buoy's balance and kinematics at the top
-  int end_rows_, top_rows_;
+  int end_rows_;  ///< rows of the lower end, before the intervals'
+
   mutable std::vector<Water> water_;
 };
 
 // ------------------------------------------------------------------------------------------------
 
-DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
-  Impl& im = *impl_;
-  const std::string err = problem.validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  im.problem = problem;
-  im.opt = problem.dynamics;
-  im.ga = problem.dynamics.scheme;
-  im.mesh = buildMesh(problem);
-  // A towed line starts from the steady tow at the tow point's initial velocity (section 7.1:
-  // "steady tow, then the manoeuvre"): statics in the frame moving with it, then every node given
-  // that velocity, which is a steady state of the dynamic equations.
-  // A drifter starts from its steady drift: the statics find the drift velocity V_d, and every
-  // node moves at it.
-  const bool drifter = isDrifter(problem);
-  const bool towed = problem.lower_end == Problem::LowerEnd::Free && !drifter;
-  Problem start = problem;
-  double V0[3] = {0.0, 0.0, 0.0};
-  if (towed) {
-    const TopState s0 = makeTopMotion(problem.dynamics.top_motion, problem.top.x, problem.top.y, problem.top.z,
-                                      nullptr)(0.0);
-    constexpr double kVelocityMismatch = 1e-6;  // [m/s]
-    const bool given = problem.top.tow_vx != 0.0 || problem.top.tow_vy != 0.0;
-    if (given && std::hypot(problem.top.tow_vx - s0.vx, problem.top.tow_vy - s0.vy) > kVelocityMismatch)
-      throw std::invalid_argument("top.tow_velocity = (" + std::to_string(problem.top.tow_vx) + ", " +
-                                  std::to_string(problem.top.tow_vy) + ") m/s: differs from the top motion's velocity at "
-                                  "t = 0, (" + std::to_string(s0.vx) + ", " + std::to_string(s0.vy) +
-                                  ") m/s; leave it out to start from the motion's");
-    start.top.tow_vx = V0[0] = s0.vx;
-    start.top.tow_vy = V0[1] = s0.vy;
-  }
+namespace {
+
+/// A towed line starts from the steady tow at the tow point's initial velocity (section 7.1:
+/// "steady tow, then the manoeuvre"): statics in the frame moving with it (start.top.tow_v),
+/// then every node given that velocity V0, which is a steady state of the dynamic equations.
+void steadyTowStart(const Problem& problem, Problem& start, double* V0) {
+  const TopState s0 = makeTopMotion(problem.dynamics.top_motion, problem.top.x, problem.top.y, problem.top.z,
+                                    nullptr)(0.0);
+  constexpr double kVelocityMismatch = 1e-6;  // [m/s]
+  const bool given = problem.top.tow_vx != 0.0 || problem.top.tow_vy != 0.0;
+  if (given && std::hypot(problem.top.tow_vx - s0.vx, problem.top.tow_vy - s0.vy) > kVelocityMismatch)
+    throw std::invalid_argument("top.tow_velocity = (" + std::to_string(problem.top.tow_vx) + ", " +
+                                std::to_string(problem.top.tow_vy) + ") m/s: differs from the top motion's velocity at "
+                                "t = 0, (" + std::to_string(s0.vx) + ", " + std::to_string(s0.vy) +
+                                ") m/s; leave it out to start from the motion's");
+  start.top.tow_vx = V0[0] = s0.vx;
+  start.top.tow_vy = V0[1] = s0.vy;
+}
+
+/// The static solution the run starts from, on im.mesh (section 3: the adaptive mesh of eq. 22
+/// when the options ask).
+StaticState3D solveStart(DynamicSolver3D::Impl& im, const Problem& problem, const Problem& start) {
   StaticState3D st = solveStatic3DOnMesh(start, im.mesh, start.static_options);
   if (st.result.summary.converged && problem.dynamics.adaptive_mesh) {
     // Section 3: redistribute the nodes by eq. 22. The curvature fed to eq. 21 is the magnitude
@@ -454,30 +310,24 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   if (!st.result.summary.converged)
     throw std::runtime_error("the 3-D static solution that starts the dynamic run did not converge: " +
                              st.result.summary.message);
-  im.statics = st.result;
-  if (drifter) {
-    V0[0] = st.result.drift_vx;
-    V0[1] = st.result.drift_vy;
-  }
-  if (problem.environment.waves.type != WaveSpec::Type::None)
-    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
-  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size(), true);
-  im.current = CurrentProfile(problem.environment.current);
-  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
-    im.fork = std::make_unique<ForkJoin>();
-    im.newton_matrix.setParallel(im.fork.get());
-  }
+  return st;
+}
 
+/// The top motion of the problem file, started at the static top.
+void setTopMotion(DynamicSolver3D::Impl& im, const Problem& problem) {
   const NodeState& topNode = im.statics.nodes.back();
   const TopMotion& tm = problem.dynamics.top_motion;
   constexpr double kStartMismatch = 0.01;  // [m] a position table must start where statics put the top
   const std::string bad = topMotionStartError(tm, topNode.x, topNode.y, topNode.z, kStartMismatch);
   if (!bad.empty()) throw std::invalid_argument(bad);
   im.top = makeTopMotion(tm, topNode.x, topNode.y, topNode.z, &im.waves);
+}
 
+/// The start state from the statics Y: at rest, or every node moving at V0 (a tow or a drift).
+void startState(DynamicSolver3D::Impl& im, const Eigen::VectorXd& Y, bool moving, bool drifter, const double* V0) {
   im.t = 0.0;
-  im.Y = st.Y;
-  if (towed || drifter) {
+  im.Y = Y;
+  if (moving) {
     for (int j = 0; j < im.nodes(); ++j) {
       double* y = im.Y.data() + N * j;
       double R[9];
@@ -492,11 +342,10 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
     for (int j = 0; j < im.nodes(); ++j)
       for (int i = 0; i < 3; ++i) im.Yd[N * j + X + i] = V0[i];
   }
-  im.waterField(im.Y, 0.0, im.water);
-  im.spatialRows(im.Y, im.water, im.S);
-  im.endRows(im.Y, im.water, 0.0);
+}
 
-  // Error scales chi_m of eq. 39, as in 2-D.
+/// Error scales chi_m of eq. 39, as in 2-D.
+void setErrorScales(DynamicSolver3D::Impl& im, const Problem& problem) {
   double Tc = 1.0, stiffest = 0.0;
   for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
   for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
@@ -508,13 +357,55 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   im.chi[X] = im.chi[eq3d::Y] = im.chi[Z] = 1.0;  // [m]
 }
 
+}  // namespace
+
+DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  const std::string err = problem.validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  im.problem = problem;
+  im.opt = problem.dynamics;
+  im.ga = problem.dynamics.scheme;
+  im.mesh = buildMesh(problem);
+  // A towed line starts from its steady tow, a drifter from its steady drift: the statics find
+  // the drift velocity V_d, and every node moves at it.
+  const bool drifter = isDrifter(problem);
+  const bool towed = problem.lower_end == Problem::LowerEnd::Free && !drifter;
+  Problem start = problem;
+  double V0[3] = {0.0, 0.0, 0.0};
+  if (towed) steadyTowStart(problem, start, V0);
+  const StaticState3D st = solveStart(im, problem, start);
+  im.statics = st.result;
+  im.lower = makeLowerEnd3D(im.problem, im.mat(0));
+  im.upper = makeUpperEnd3D(im.problem, im.mat(im.nodes() - 1));
+  if (drifter) {
+    V0[0] = st.result.drift_vx;
+    V0[1] = st.result.drift_vy;
+  }
+  if (problem.environment.waves.type != WaveSpec::Type::None)
+    im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
+  im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size(), true);
+  im.current = CurrentProfile(problem.environment.current);
+  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
+    im.fork = std::make_unique<ForkJoin>();
+    im.newton_matrix.setParallel(im.fork.get());
+  }
+  setTopMotion(im, problem);
+  startState(im, st.Y, towed || drifter, drifter, V0);
+  im.waterField(im.Y, 0.0, im.water);
+  im.spatialRows(im.Y, im.water, im.S);
+  im.acceptEndLevels(im.Y, im.water, 0.0);
+  setErrorScales(im, problem);
+}
+
 DynamicSolver3D::~DynamicSolver3D() = default;
 
 void DynamicSolver3D::setTopInput(std::function<TopState(double)> source) { impl_->top = std::move(source); }
 void DynamicSolver3D::setLowerEndInput(std::function<TopState(double)> source) {
-  if (impl_->problem.lower_end == Problem::LowerEnd::Free)
+  Impl& im = *impl_;
+  if (im.problem.lower_end == Problem::LowerEnd::Free)
     throw std::invalid_argument("setLowerEndInput: the line's lower end is free; it has no anchor to move");
-  impl_->bottom = std::move(source);
+  im.lower = source ? makeMovingAnchor3D(im.problem, std::move(source)) : makeLowerEnd3D(im.problem, im.mat(0));
 }
 double DynamicSolver3D::time() const { return impl_->t; }
 const StaticResult& DynamicSolver3D::initialStatic() const { return impl_->statics; }
@@ -567,7 +458,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.t = t_new;
   im.water = sys.water();
   im.spatialRows(im.Y, im.water, im.S);
-  im.endRows(im.Y, im.water, im.t);
+  im.acceptEndLevels(im.Y, im.water, im.t);
   ++rep.steps;
   ++im.totals.steps;
   rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
@@ -594,7 +485,7 @@ struct DynamicSolver3D::Saved {
   double t = 0.0;
   Eigen::VectorXd Y, Yd, Yd_prev, S;
   std::vector<Water> water;
-  double S_end[3] = {0.0, 0.0, 0.0}, S_top[3] = {0.0, 0.0, 0.0};
+  std::vector<double> lower_state, upper_state;  ///< of the ends (EndCondition3D::state)
   double last_dt = 0.0;
   Totals totals;
 };
@@ -608,10 +499,8 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->Yd_prev = im.Yd_prev;
   s->S = im.S;
   s->water = im.water;
-  for (int i = 0; i < 3; ++i) {
-    s->S_end[i] = im.S_end[i];
-    s->S_top[i] = im.S_top[i];
-  }
+  s->lower_state = im.lower->state();
+  s->upper_state = im.upper->state();
   s->last_dt = im.last_dt;
   s->totals = im.totals;
   return s;
@@ -625,10 +514,8 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.Yd_prev = s.Yd_prev;
   im.S = s.S;
   im.water = s.water;
-  for (int i = 0; i < 3; ++i) {
-    im.S_end[i] = s.S_end[i];
-    im.S_top[i] = s.S_top[i];
-  }
+  im.lower->setState(s.lower_state);
+  im.upper->setState(s.upper_state);
   im.last_dt = s.last_dt;
   im.totals = s.totals;
   // A kept factorization (modified Newton) stays: it is still a Jacobian of this step size.

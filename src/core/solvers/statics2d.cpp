@@ -8,6 +8,7 @@
 #include "mooring_dynamics/core/equations/equations2d.hpp"
 #include "mooring_dynamics/core/solvers/initial_guess.hpp"
 #include "mooring_dynamics/core/equations/mesh.hpp"
+#include "mooring_dynamics/core/numerics/ad_rows.hpp"
 #include "mooring_dynamics/core/numerics/newton.hpp"
 #include "mooring_dynamics/core/solvers/static_system.hpp"
 
@@ -24,14 +25,18 @@ using namespace eq2d;
 namespace {
 using AD12 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
 using AD6 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
-constexpr int kAnchorRows = 3;
 const char* const kVarNames[N] = {"eps", "Sn", "phi", "Omega3", "x", "z"};
 }  // namespace
 
-StaticSystem2D::StaticSystem2D(const Problem& problem, const Mesh& mesh) : problem_(problem), mesh_(mesh) {
+StaticSystem2D::StaticSystem2D(const Problem& problem, const Mesh& mesh)
+    : problem_(problem),
+      mesh_(mesh),
+      lower_(makeLowerEnd2D(problem)),
+      upper_(makeUpperEnd2D(problem, problem.materials[mesh.nodes.back().material])),
+      lower_rows_(lower_->staticRows()) {
   // Characteristic magnitudes for the error measure (chi_m of eq. 39).
   double Tc = std::abs(totalWetWeight(problem, mesh));
-  if (problem.top.type == TopBoundary::Type::Force) Tc = std::max(Tc, std::hypot(problem.top.fx, problem.top.fz));
+  Tc = std::max(Tc, upper_->characteristicForce());  // a force top's force
   Tc = std::max(Tc, 1.0);
   double stiffest = 0.0;
   for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
@@ -58,85 +63,37 @@ std::string StaticSystem2D::describe(int i) const {
 void StaticSystem2D::evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) {
   const int n = static_cast<int>(mesh_.nodes.size());
   R.resize(size());
-  const Material& m0 = problem_.materials[mesh_.nodes.front().material];
-  const Material& mn = problem_.materials[mesh_.nodes.back().material];
-  (void)m0;
+  endRows(*lower_, 0, 0, Y, R, J);  // the anchor (eq. 33)
+  for (int j = 0; j + 1 < n; ++j) intervalRows(j, Y, R, J);
+  endRows(*upper_, lower_rows_ + N * (n - 1), N * (n - 1), Y, R, J);  // the top (eq. 33, section 5.1)
+}
 
-  // Anchor: position fixed, moment free (Omega3 = 0), eq. 33.
-  R[0] = Y[X] - problem_.anchor_x;
-  R[1] = Y[Z] - problem_.anchor_z;
-  R[2] = Y[OMEGA];
+void StaticSystem2D::endRows(const EndCondition2D& end, int row0, int col0, const Eigen::VectorXd& Y,
+                             Eigen::VectorXd& R, BandedMatrix* J) const {
+  AD6 y[N], r[kMaxEndRows];
+  for (int k = 0; k < N; ++k) y[k] = AD6(Y[col0 + k], N, k);
+  end.staticResidual(y, r);
+  scatter(r, end.staticRows(), row0, col0, N, R, J);
+}
+
+void StaticSystem2D::intervalRows(int j, const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) const {
+  // One block of six rows per half-grid interval (eq. 11).
+  const MeshInterval& iv = mesh_.intervals[static_cast<std::size_t>(j)];
+  const Material& ma = problem_.materials[mesh_.nodes[static_cast<std::size_t>(j)].material];
+  const Material& mb = problem_.materials[mesh_.nodes[static_cast<std::size_t>(j) + 1].material];
+  const int row = lower_rows_ + N * j;
   if (J) {
-    J->at(0, X) = 1.0;
-    J->at(1, Z) = 1.0;
-    J->at(2, OMEGA) = 1.0;
-  }
-
-  // Interior: one block of six rows per half-grid interval (eq. 11).
-  for (int j = 0; j + 1 < n; ++j) {
-    const MeshInterval& iv = mesh_.intervals[static_cast<std::size_t>(j)];
-    const Material& ma = problem_.materials[mesh_.nodes[static_cast<std::size_t>(j)].material];
-    const Material& mb = problem_.materials[mesh_.nodes[static_cast<std::size_t>(j) + 1].material];
-    const int row = kAnchorRows + N * j;
-    if (J) {
-      AD12 y[2 * N], r[N];
-      for (int k = 0; k < 2 * N; ++k) y[k] = AD12(Y[N * j + k], 2 * N, k);
-      intervalResidual(problem_, iv, ma, mb, y, y + N, r, capped_);
-      for (int q = 0; q < N; ++q) {
-        R[row + q] = r[q].value();
-        for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = r[q].derivatives()[k];
-      }
-    } else {
-      double r[N];
-      intervalResidual(problem_, iv, ma, mb, Y.data() + N * j, Y.data() + N * (j + 1), r, capped_);
-      for (int q = 0; q < N; ++q) R[row + q] = r[q];
+    AD12 y[2 * N], r[N];
+    for (int k = 0; k < 2 * N; ++k) y[k] = AD12(Y[N * j + k], 2 * N, k);
+    intervalResidual(problem_, iv, ma, mb, y, y + N, r, capped_);
+    for (int q = 0; q < N; ++q) {
+      R[row + q] = r[q].value();
+      for (int k = 0; k < 2 * N; ++k) J->at(row + q, N * j + k) = r[q].derivatives()[k];
     }
-  }
-
-  // Top: moment free plus two conditions from the boundary type (eq. 33 / section 5.1).
-  const int top = N * (n - 1);
-  const int row = kAnchorRows + N * (n - 1);
-  AD6 y[N];
-  for (int k = 0; k < N; ++k) y[k] = AD6(Y[top + k], N, k);
-  AD6 r[3];
-  r[0] = y[OMEGA];
-  const TopBoundary& tb = problem_.top;
-  switch (tb.type) {
-    case TopBoundary::Type::Position:
-      r[1] = y[X] - tb.x;
-      r[2] = y[Z] - tb.z;
-      break;
-    case TopBoundary::Type::Force: {
-      AD6 Fx, Fz;
-      internalForce(mn, y, Fx, Fz);
-      r[1] = Fx - tb.fx;
-      r[2] = Fz - tb.fz;
-      break;
-    }
-    case TopBoundary::Type::Buoy: {
-      AD6 Fx, Fz, Bx, Bz;
-      internalForce(mn, y, Fx, Fz);
-      buoyForce(problem_.environment, tb.buoy, y[Z], Bx, Bz);
-      r[1] = Fx - Bx;
-      r[2] = Fz - Bz;
-      break;
-    }
-    case TopBoundary::Type::Body: {
-      // A submerged body at the top: the line's pull balances its net buoyancy and drag.
-      // (Problem::validate() keeps it to the 3-D model for now; the row is the 2-D form.)
-      AD6 Fx, Fz, Pt, Pn;
-      internalForce(mn, y, Fx, Fz);
-      bodyLoad(problem_.environment, problem_.bodies[tb.body], y[PHI], y[Z], Pt, Pn);
-      r[1] = Fx - (Pt * sin(y[PHI]) + Pn * cos(y[PHI]));
-      r[2] = Fz - (Pt * cos(y[PHI]) - Pn * sin(y[PHI]));
-      break;
-    }
-  }
-  for (int q = 0; q < 3; ++q) {
-    R[row + q] = r[q].value();
-    if (J)
-      for (int k = 0; k < N; ++k)
-        if (r[q].derivatives()[k] != 0.0) J->at(row + q, top + k) = r[q].derivatives()[k];
+  } else {
+    double r[N];
+    intervalResidual(problem_, iv, ma, mb, Y.data() + N * j, Y.data() + N * (j + 1), r, capped_);
+    for (int q = 0; q < N; ++q) R[row + q] = r[q];
   }
 }
 

@@ -21,8 +21,6 @@ using namespace eq3d;
 namespace {
 using AD32 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
 using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
-constexpr int kAnchorRows = 10;
-constexpr int kTopRows = 6;
 
 /// Water velocity of the steady current at a node (statics: no waves).
 Water currentAt(const Environment& env, double z) {
@@ -38,12 +36,14 @@ Water currentAt(const Environment& env, double z) {
 // --- StaticSystem3D ------------------------------------------------------------------------------
 
 StaticSystem3D::StaticSystem3D(const Problem& problem, const Mesh& mesh, const double* q_ref)
-    : problem_(problem), mesh_(mesh) {
+    : problem_(problem),
+      mesh_(mesh),
+      lower_(makeLowerEnd3D(problem, problem.materials[mesh.nodes.front().material])),
+      upper_(makeUpperEnd3D(problem, problem.materials[mesh.nodes.back().material])),
+      lower_rows_(lower_->staticRows()) {
   for (int i = 0; i < 4; ++i) q_ref_[i] = q_ref[i];
   double Tc = std::abs(totalWetWeight(problem, mesh));
-  if (problem.top.type == TopBoundary::Type::Force)
-    Tc = std::max(Tc, std::sqrt(problem.top.fx * problem.top.fx + problem.top.fy * problem.top.fy +
-                                problem.top.fz * problem.top.fz));
+  Tc = std::max(Tc, upper_->characteristicForce());  // a force top's force
   Tc = std::max(Tc, 1.0);
   double stiffest = 0.0;
   for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
@@ -70,107 +70,55 @@ std::string StaticSystem3D::describe(int i) const {
 
 void StaticSystem3D::evaluate(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) {
   const int n = static_cast<int>(mesh_.nodes.size());
-  const Environment& env = problem_.environment;
   R.resize(size());
   std::vector<Water> water(static_cast<std::size_t>(n));
-  for (int j = 0; j < n; ++j) water[static_cast<std::size_t>(j)] = currentAt(env, Yv[N * j + Z]);
+  for (int j = 0; j < n; ++j) water[static_cast<std::size_t>(j)] = currentAt(problem_.environment, Yv[N * j + Z]);
+  // The lower end (anchor or free end), sixteen rows per interval (eq. 11), the top (eq. 33 /
+  // section 5.1 in 3-D).
+  endRows(*lower_, 0, 0, water.front(), Yv, R, J);
+  for (int j = 0; j + 1 < n; ++j) intervalRows(j, water, Yv, R, J);
+  endRows(*upper_, lower_rows_ + N * (n - 1), N * (n - 1), water.back(), Yv, R, J);
+}
 
-  // Anchor: at rest, fixed, bending-moment free, unit frame, no twist (DESIGN.md section 3).
-  {
-    AD16 y[N], r[kAnchorRows];
-    for (int k = 0; k < N; ++k) y[k] = AD16(Yv[k], N, k);
-    r[0] = y[U1];
-    r[1] = y[U2];
-    r[2] = y[U3];
-    if (problem_.lower_end == Problem::LowerEnd::Free) {
-      // Towing: the end body's force balance instead of a fixed position (section 5.2).
-      freeEndForces(problem_, problem_.materials[mesh_.nodes.front().material], y, water[0], r + 3);
+void StaticSystem3D::endRows(const EndCondition3D& end, int row0, int col0, const Water& water,
+                             const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
+  AD16 y[N], r[kMaxEndRows];
+  for (int k = 0; k < N; ++k) y[k] = AD16(Yv[col0 + k], N, k);
+  end.staticResidual(StaticEnd3D{&water, q_ref_}, y, r);
+  scatter(r, end.staticRows(), row0, col0, N, R, J);
+}
+
+void StaticSystem3D::intervalRows(int j, const std::vector<Water>& water, const Eigen::VectorXd& Yv,
+                                  Eigen::VectorXd& R, BandedMatrix* J) const {
+  // Sixteen rows per half-grid interval (eq. 11), or a pin junction.
+  const Environment& env = problem_.environment;
+  const MeshInterval& iv = mesh_.intervals[static_cast<std::size_t>(j)];
+  const Material& ma = problem_.materials[mesh_.nodes[static_cast<std::size_t>(j)].material];
+  const Material& mb = problem_.materials[mesh_.nodes[static_cast<std::size_t>(j) + 1].material];
+  const Water& wa = water[static_cast<std::size_t>(j)];
+  const Water& wb = water[static_cast<std::size_t>(j) + 1];
+  const int row = lower_rows_ + N * j;
+  if (J) {
+    AD32 y[2 * N], r[N];
+    for (int k = 0; k < 2 * N; ++k) y[k] = AD32(Yv[N * j + k], 2 * N, k);
+    if (iv.h > 0.0) {
+      intervalSpatial(env, problem_.materials[iv.material], iv.h, y, y + N, wa, wb, r);
     } else {
-      r[3] = y[X] - problem_.anchor_x;
-      r[4] = y[Y] - problem_.anchor_y;
-      r[5] = y[Z] - problem_.anchor_z;
+      junctionForces(problem_, iv, ma, mb, y, y + N, wa, r);
+      junctionConstraints(ma, mb, y, y + N, r);
     }
-    r[6] = y[O2];
-    r[7] = y[O3];
-    r[8] = normDefect(y);
-    r[9] = twistGauge(q_ref_, y);
-    scatter(r, kAnchorRows, 0, 0, N, R, J);
-  }
-
-  // Interior: sixteen rows per half-grid interval (eq. 11), or a pin junction.
-  for (int j = 0; j + 1 < n; ++j) {
-    const MeshInterval& iv = mesh_.intervals[static_cast<std::size_t>(j)];
-    const Material& ma = problem_.materials[mesh_.nodes[static_cast<std::size_t>(j)].material];
-    const Material& mb = problem_.materials[mesh_.nodes[static_cast<std::size_t>(j) + 1].material];
-    const Water& wa = water[static_cast<std::size_t>(j)];
-    const Water& wb = water[static_cast<std::size_t>(j) + 1];
-    const int row = kAnchorRows + N * j;
-    if (J) {
-      AD32 y[2 * N], r[N];
-      for (int k = 0; k < 2 * N; ++k) y[k] = AD32(Yv[N * j + k], 2 * N, k);
-      if (iv.h > 0.0) {
-        intervalSpatial(env, problem_.materials[iv.material], iv.h, y, y + N, wa, wb, r);
-      } else {
-        junctionForces(problem_, iv, ma, mb, y, y + N, wa, r);
-        junctionConstraints(ma, mb, y, y + N, r);
-      }
-      scatter(r, N, row, N * j, 2 * N, R, J);
+    scatter(r, N, row, N * j, 2 * N, R, J);
+  } else {
+    double r[N];
+    const double* ya = Yv.data() + N * j;
+    if (iv.h > 0.0) {
+      intervalSpatial(env, problem_.materials[iv.material], iv.h, ya, ya + N, wa, wb, r);
     } else {
-      double r[N];
-      const double* ya = Yv.data() + N * j;
-      if (iv.h > 0.0) {
-        intervalSpatial(env, problem_.materials[iv.material], iv.h, ya, ya + N, wa, wb, r);
-      } else {
-        junctionForces(problem_, iv, ma, mb, ya, ya + N, wa, r);
-        junctionConstraints(ma, mb, ya, ya + N, r);
-      }
-      for (int q = 0; q < N; ++q) R[row + q] = r[q];
+      junctionForces(problem_, iv, ma, mb, ya, ya + N, wa, r);
+      junctionConstraints(ma, mb, ya, ya + N, r);
     }
+    for (int q = 0; q < N; ++q) R[row + q] = r[q];
   }
-
-  // Top: moment free (3) plus the boundary condition (3), eq. 33 / section 5.1 in 3-D.
-  const int top = N * (n - 1);
-  const Material& mn = problem_.materials[mesh_.nodes.back().material];
-  AD16 y[N], r[kTopRows];
-  for (int k = 0; k < N; ++k) y[k] = AD16(Yv[top + k], N, k);
-  r[0] = y[O1];
-  r[1] = y[O2];
-  r[2] = y[O3];
-  const TopBoundary& tb = problem_.top;
-  switch (tb.type) {
-    case TopBoundary::Type::Position:
-      r[3] = y[X] - tb.x;
-      r[4] = y[Y] - tb.y;
-      r[5] = y[Z] - tb.z;
-      break;
-    case TopBoundary::Type::Force: {
-      AD16 F[3];
-      internalForce(mn, y, F);
-      r[3] = F[0] - tb.fx;
-      r[4] = F[1] - tb.fy;
-      r[5] = F[2] - tb.fz;
-      break;
-    }
-    case TopBoundary::Type::Buoy: {
-      AD16 F[3], B[3];
-      internalForce(mn, y, F);
-      buoyForce(env, tb.buoy, y[Z], B);
-      for (int i = 0; i < 3; ++i) r[3 + i] = F[i] - B[i];
-      if (problem_.lower_end == Problem::LowerEnd::Free) {
-        // Drifter (drifting.hpp): the buoy held horizontally in the drifting frame, its draft
-        // balance vertically; the horizontal balance is the outer iteration's residual.
-        r[3] = y[X] - tb.x;
-        r[4] = y[Y] - tb.y;
-      }
-      break;
-    }
-    case TopBoundary::Type::Body: {
-      const double none[3] = {0.0, 0.0, 0.0};
-      topBodyForces(problem_, mn, y, water[static_cast<std::size_t>(n - 1)], none, r + 3);
-      break;
-    }
-  }
-  scatter(r, kTopRows, kAnchorRows + N * (n - 1), top, N, R, J);
 }
 
 double StaticSystem3D::stepLimit(const Eigen::VectorXd& dY) const {

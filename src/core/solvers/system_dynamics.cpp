@@ -211,173 +211,218 @@ std::vector<SystemPointResult> SystemDynamics::points() const {
   return out;
 }
 
-bool SystemDynamics::advanceTo(double t_end, std::string* message) {
-  Impl& im = *impl_;
-  const double eps = 1e-9 * im.opt.dt;
-  const int m = static_cast<int>(3 * im.free_pts.size());
-  while (im.t < t_end - eps) {
-    const double dt = std::min(im.opt.dt, t_end - im.t), t1 = im.t + dt;
-    std::vector<std::shared_ptr<const DynamicSolver3D::Saved>> saved;
-    for (const auto& l : im.lines) saved.push_back(l->save());
+namespace {
 
-    // Newmark: the new velocity and acceleration of every point from its new position.
-    auto kinematics = [&](const Eigen::VectorXd& X1, Eigen::VectorXd& V1, Eigen::VectorXd& A1) {
-      A1 = (X1 - im.X - dt * im.V - dt * dt * (0.5 - kBeta) * im.A) / (kBeta * dt * dt);
-      V1 = im.V + dt * ((1.0 - kGamma) * im.A + kGamma * A1);
-    };
-    // The motion of point p over the step: position and velocity linear in time from (X, V) at
-    // t to (X1, V1) at t1 (a fixed point stays where it is).
-    auto pointMotion = [&](std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
-      const double t0 = im.t;
-      const Eigen::Vector3d x0 = im.X.segment<3>(static_cast<Eigen::Index>(3 * p)),
-                            v0 = im.V.segment<3>(static_cast<Eigen::Index>(3 * p)),
-                            x1 = X1.segment<3>(static_cast<Eigen::Index>(3 * p)),
-                            v1 = V1.segment<3>(static_cast<Eigen::Index>(3 * p));
-      return [=](double tau) {
-        const double w = dt > 0.0 ? std::clamp((tau - t0) / dt, 0.0, 1.0) : 1.0;
-        const Eigen::Vector3d x = x0 + w * (x1 - x0), v = v0 + w * (v1 - v0);
-        TopState s;
-        s.x = x[0];
-        s.y = x[1];
-        s.z = x[2];
-        s.vx = v[0];
-        s.vy = v[1];
-        s.vz = v[2];
-        return s;
-      };
-    };
-    // Run every line with an end at one of `pts` through the step with the points at X1; false
-    // when a line's step fails.
-    std::string why;
-    // The path of a line end at point p over the step: the vessel's fairlead path, or the
-    // point's own motion.
-    auto endMotion = [&](std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
-      return im.isVessel(p) ? im.fairleadMotion(p) : std::function<TopState(double)>(pointMotion(p, X1, V1));
-    };
-    // Run the given lines through the step, side by side on the pool (each writes only its own
-    // solver and report); false, naming the first line in line order that failed.
-    auto runSet = [&](const std::vector<std::size_t>& set, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
-      std::vector<StepReport> reports(set.size());
-      im.pool->parallelFor(set.size(), [&](std::size_t k) {
-        const std::size_t i = set[k];
-        DynamicSolver3D& line = *im.lines[i];
-        const SystemLine& sl = im.system.lines[i];
-        line.restore(*saved[i]);
-        line.setTopInput(endMotion(sl.to, X1, V1));
-        if (sl.from != SystemLine::kFreeEnd && (im.system.points[sl.from].free() || im.isVessel(sl.from)))
-          line.setLowerEndInput(endMotion(sl.from, X1, V1));
-        reports[k] = line.advanceTo(t1);
-      });
-      im.line_steps += static_cast<long>(set.size());
-      for (std::size_t k = 0; k < set.size(); ++k)
-        if (!reports[k].ok) {
-          why = "line " + im.system.lines[set[k]].name + ": " + reports[k].message;
-          return false;
-        }
-      return true;
-    };
-    // Run every line with an end at one of `pts` through the step with the points at X1.
-    auto runLines = [&](const std::vector<std::size_t>& pts, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
-      std::vector<char> done(im.lines.size(), 0);
-      std::vector<std::size_t> set;
-      for (std::size_t p : pts)
-        for (std::size_t i : im.lines_at[p])
-          if (!done[i]) {
-            done[i] = 1;
-            set.push_back(i);
-          }
-      return runSet(set, X1, V1);
-    };
-    // Force balance of every free point: M a - (pulls + own load).
-    double scale = 1.0;
-    auto residual = [&](const Eigen::VectorXd& X1, const Eigen::VectorXd& V1, const Eigen::VectorXd& A1,
-                        Eigen::VectorXd& G) {
-      G.resize(m);
-      for (std::size_t k = 0; k < im.free_pts.size(); ++k) {
-        const std::size_t p = im.free_pts[k];
-        double F[3];
-        im.load(p, X1.data() + 3 * p, V1.data() + 3 * p, t1, F);
-        scale = std::max({scale, std::abs(F[2])});
-        for (std::size_t i : im.lines_at[p]) {
-          // A line pulls its upper point with -top_force and its lower point with anchor_force.
-          const StaticResult s = im.lines[i]->snapshot();
-          const bool top = im.system.lines[i].to == p;
-          const double f[3] = {top ? -s.top_force_x : s.anchor_force_x, top ? -s.top_force_y : s.anchor_force_y,
-                               top ? -s.top_force_z : s.anchor_force_z};
-          for (int c = 0; c < 3; ++c) {
-            F[c] += f[c];
-            scale = std::max(scale, std::abs(f[c]));
-          }
-        }
-        for (int c = 0; c < 3; ++c)
-          G[static_cast<Eigen::Index>(3 * k + c)] = im.mass(p) * A1[static_cast<Eigen::Index>(3 * p + c)] - F[c];
-      }
-    };
-    auto fail = [&](const std::string& what) {
-      for (std::size_t i = 0; i < im.lines.size(); ++i) im.lines[i]->restore(*saved[i]);
-      if (message) *message = "t = " + std::to_string(t1) + " s: " + what;
-      return false;
-    };
+/// One step of the system from im.t: the free points' new positions by Newton on their force
+/// balance (Newmark's trapezoidal rule in time), every line with an end at a point run through
+/// the step for each iterate of the points. On failure the lines are back at im.t.
+class PointStep {
+ public:
+  PointStep(SystemDynamics::Impl& im, double dt, std::string* message)
+      : im_(im), dt_(dt), t1_(im.t + dt), m_(static_cast<int>(3 * im.free_pts.size())), message_(message) {
+    for (const auto& l : im_.lines) saved_.push_back(l->save());
+  }
 
+  /// Predict, iterate the points to balance, accept; false (message set) on failure.
+  bool run() {
     // Predictor: constant acceleration.
-    Eigen::VectorXd X1 = im.X + dt * im.V + 0.5 * dt * dt * im.A, V1, A1, G;
+    Eigen::VectorXd X1 = im_.X + dt_ * im_.V + 0.5 * dt_ * dt_ * im_.A, V1, A1, G;
     kinematics(X1, V1, A1);
     // The lines on the vessel that touch no free point: once per step, side by side.
-    if (!runSet(im.vessel_lines, X1, V1)) return fail(why);
-    if (!runLines(im.free_pts, X1, V1)) return fail(why);
+    if (!runSet(im_.vessel_lines, X1, V1)) return fail(why_);
+    if (!runLines(im_.free_pts, X1, V1)) return fail(why_);
     residual(X1, V1, A1, G);
-    bool converged = m == 0;
+    bool converged = false;
+    if (!iterate(X1, V1, A1, G, converged)) return fail(why_);
+    if (!converged && G.cwiseAbs().maxCoeff() >= kForceTolerance * scale_)
+      return fail("the point iteration did not converge: force residual " + std::to_string(G.cwiseAbs().maxCoeff()) +
+                  " N");
+    accept(X1, V1, A1);
+    return true;
+  }
+
+ private:
+  /// Newmark: the new velocity and acceleration of every point from its new position.
+  void kinematics(const Eigen::VectorXd& X1, Eigen::VectorXd& V1, Eigen::VectorXd& A1) const {
+    A1 = (X1 - im_.X - dt_ * im_.V - dt_ * dt_ * (0.5 - kBeta) * im_.A) / (kBeta * dt_ * dt_);
+    V1 = im_.V + dt_ * ((1.0 - kGamma) * im_.A + kGamma * A1);
+  }
+
+  /// The motion of point p over the step: position and velocity linear in time from (X, V) at
+  /// t to (X1, V1) at t1 (a fixed point stays where it is).
+  std::function<TopState(double)> pointMotion(std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) const {
+    const double t0 = im_.t, dt = dt_;
+    const Eigen::Vector3d x0 = im_.X.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                          v0 = im_.V.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                          x1 = X1.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                          v1 = V1.segment<3>(static_cast<Eigen::Index>(3 * p));
+    return [=](double tau) {
+      const double w = dt > 0.0 ? std::clamp((tau - t0) / dt, 0.0, 1.0) : 1.0;
+      const Eigen::Vector3d x = x0 + w * (x1 - x0), v = v0 + w * (v1 - v0);
+      TopState s;
+      s.x = x[0];
+      s.y = x[1];
+      s.z = x[2];
+      s.vx = v[0];
+      s.vy = v[1];
+      s.vz = v[2];
+      return s;
+    };
+  }
+
+  /// The path of a line end at point p over the step: the vessel's fairlead path, or the
+  /// point's own motion.
+  std::function<TopState(double)> endMotion(std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) const {
+    return im_.isVessel(p) ? im_.fairleadMotion(p) : pointMotion(p, X1, V1);
+  }
+
+  /// Run the given lines through the step, side by side on the pool (each writes only its own
+  /// solver and report); false, naming the first line in line order that failed.
+  bool runSet(const std::vector<std::size_t>& set, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+    std::vector<StepReport> reports(set.size());
+    im_.pool->parallelFor(set.size(), [&](std::size_t k) {
+      const std::size_t i = set[k];
+      DynamicSolver3D& line = *im_.lines[i];
+      const SystemLine& sl = im_.system.lines[i];
+      line.restore(*saved_[i]);
+      line.setTopInput(endMotion(sl.to, X1, V1));
+      if (sl.from != SystemLine::kFreeEnd && (im_.system.points[sl.from].free() || im_.isVessel(sl.from)))
+        line.setLowerEndInput(endMotion(sl.from, X1, V1));
+      reports[k] = line.advanceTo(t1_);
+    });
+    im_.line_steps += static_cast<long>(set.size());
+    for (std::size_t k = 0; k < set.size(); ++k)
+      if (!reports[k].ok) {
+        why_ = "line " + im_.system.lines[set[k]].name + ": " + reports[k].message;
+        return false;
+      }
+    return true;
+  }
+
+  /// Run every line with an end at one of `pts` through the step with the points at X1.
+  bool runLines(const std::vector<std::size_t>& pts, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+    std::vector<char> done(im_.lines.size(), 0);
+    std::vector<std::size_t> set;
+    for (std::size_t p : pts)
+      for (std::size_t i : im_.lines_at[p])
+        if (!done[i]) {
+          done[i] = 1;
+          set.push_back(i);
+        }
+    return runSet(set, X1, V1);
+  }
+
+  /// Force balance of every free point: M a - (pulls + own load).
+  void residual(const Eigen::VectorXd& X1, const Eigen::VectorXd& V1, const Eigen::VectorXd& A1, Eigen::VectorXd& G) {
+    G.resize(m_);
+    for (std::size_t k = 0; k < im_.free_pts.size(); ++k) {
+      const std::size_t p = im_.free_pts[k];
+      double F[3];
+      im_.load(p, X1.data() + 3 * p, V1.data() + 3 * p, t1_, F);
+      scale_ = std::max({scale_, std::abs(F[2])});
+      for (std::size_t i : im_.lines_at[p]) {
+        // A line pulls its upper point with -top_force and its lower point with anchor_force.
+        const StaticResult s = im_.lines[i]->snapshot();
+        const bool top = im_.system.lines[i].to == p;
+        const double f[3] = {top ? -s.top_force_x : s.anchor_force_x, top ? -s.top_force_y : s.anchor_force_y,
+                             top ? -s.top_force_z : s.anchor_force_z};
+        for (int c = 0; c < 3; ++c) {
+          F[c] += f[c];
+          scale_ = std::max(scale_, std::abs(f[c]));
+        }
+      }
+      for (int c = 0; c < 3; ++c)
+        G[static_cast<Eigen::Index>(3 * k + c)] = im_.mass(p) * A1[static_cast<Eigen::Index>(3 * p + c)] - F[c];
+    }
+  }
+
+  /// Newton on the points' force balance from the predictor; `converged` when the residual G
+  /// falls below kForceTolerance of the largest force. False when a line's step fails.
+  bool iterate(Eigen::VectorXd& X1, Eigen::VectorXd& V1, Eigen::VectorXd& A1, Eigen::VectorXd& G, bool& converged) {
+    converged = m_ == 0;
     double g_prev = 0.0;
     for (int it = 0; it < kMaxPointIterations && !converged; ++it) {
       const double g = G.cwiseAbs().maxCoeff();
-      if (g < kForceTolerance * scale) {
+      if (g < kForceTolerance * scale_) {
         converged = true;
         break;
       }
       // Point Jacobian by finite differences, kept across steps while the iteration contracts.
-      if (im.J.rows() != m || (it > 0 && g > 0.25 * g_prev)) {
-        im.J.resize(m, m);
-        for (std::size_t k = 0; k < im.free_pts.size(); ++k) {
-          const std::size_t p = im.free_pts[k];
-          for (int c = 0; c < 3; ++c) {
-            Eigen::VectorXd Xp = X1, Vp, Ap, Gp;
-            Xp[static_cast<Eigen::Index>(3 * p + c)] += kFdStep;
-            kinematics(Xp, Vp, Ap);
-            if (!runLines({p}, Xp, Vp)) return fail(why);
-            residual(Xp, Vp, Ap, Gp);
-            // Only the lines at p changed: the other points' rows are unchanged but for M a.
-            im.J.col(static_cast<Eigen::Index>(3 * k + c)) = (Gp - G) / kFdStep;
-          }
-          if (!runLines({p}, X1, V1)) return fail(why);  // back to the current iterate
-        }
-      }
+      if (im_.J.rows() != m_ || (it > 0 && g > 0.25 * g_prev))
+        if (!pointJacobian(X1, V1, G)) return false;
       g_prev = g;
-      const Eigen::VectorXd dX = im.J.fullPivLu().solve(-G);
-      for (std::size_t k = 0; k < im.free_pts.size(); ++k)
-        X1.segment<3>(static_cast<Eigen::Index>(3 * im.free_pts[k])) += dX.segment<3>(static_cast<Eigen::Index>(3 * k));
+      const Eigen::VectorXd dX = im_.J.fullPivLu().solve(-G);
+      for (std::size_t k = 0; k < im_.free_pts.size(); ++k)
+        X1.segment<3>(static_cast<Eigen::Index>(3 * im_.free_pts[k])) += dX.segment<3>(static_cast<Eigen::Index>(3 * k));
       kinematics(X1, V1, A1);
-      if (!runLines(im.free_pts, X1, V1)) return fail(why);
+      if (!runLines(im_.free_pts, X1, V1)) return false;
       residual(X1, V1, A1, G);
-      ++im.iterations;
+      ++im_.iterations;
     }
-    if (!converged && G.cwiseAbs().maxCoeff() >= kForceTolerance * scale)
-      return fail("the point iteration did not converge: force residual " + std::to_string(G.cwiseAbs().maxCoeff()) +
-                  " N");
-    // The vessel's points are where its motion puts them (the Newmark values above are only
-    // meaningful for the free points).
-    const RigidMotion vm = im.vessel_motion(t1);
-    for (std::size_t p = 0; p < im.system.points.size(); ++p) {
-      if (!im.isVessel(p)) continue;
-      const Eigen::Vector3d r = im.system.points[p].body_offset;
+    return true;
+  }
+
+  /// dG/dX1 by one-sided differences of kFdStep in every free point coordinate, into im.J.
+  bool pointJacobian(const Eigen::VectorXd& X1, const Eigen::VectorXd& V1, const Eigen::VectorXd& G) {
+    im_.J.resize(m_, m_);
+    for (std::size_t k = 0; k < im_.free_pts.size(); ++k) {
+      const std::size_t p = im_.free_pts[k];
+      for (int c = 0; c < 3; ++c) {
+        Eigen::VectorXd Xp = X1, Vp, Ap, Gp;
+        Xp[static_cast<Eigen::Index>(3 * p + c)] += kFdStep;
+        kinematics(Xp, Vp, Ap);
+        if (!runLines({p}, Xp, Vp)) return false;
+        residual(Xp, Vp, Ap, Gp);
+        // Only the lines at p changed: the other points' rows are unchanged but for M a.
+        im_.J.col(static_cast<Eigen::Index>(3 * k + c)) = (Gp - G) / kFdStep;
+      }
+      if (!runLines({p}, X1, V1)) return false;  // back to the current iterate
+    }
+    return true;
+  }
+
+  /// The new level: the vessel's points where its motion puts them (the Newmark values are only
+  /// meaningful for the free points), then every point's state at t1.
+  void accept(Eigen::VectorXd& X1, Eigen::VectorXd& V1, Eigen::VectorXd& A1) {
+    const RigidMotion vm = im_.vessel_motion(t1_);
+    for (std::size_t p = 0; p < im_.system.points.size(); ++p) {
+      if (!im_.isVessel(p)) continue;
+      const Eigen::Vector3d r = im_.system.points[p].body_offset;
       X1.segment<3>(static_cast<Eigen::Index>(3 * p)) = vm.pose.apply(r);
       V1.segment<3>(static_cast<Eigen::Index>(3 * p)) = vm.pointVelocity(r);
       A1.segment<3>(static_cast<Eigen::Index>(3 * p)).setZero();
     }
-    im.vessel_pose = vm.pose;
-    im.X = X1;
-    im.V = V1;
-    im.A = A1;
-    im.t = t1;
+    im_.vessel_pose = vm.pose;
+    im_.X = X1;
+    im_.V = V1;
+    im_.A = A1;
+    im_.t = t1_;
+  }
+
+  /// Every line back at the step's start; the message names the time and what failed.
+  bool fail(const std::string& what) {
+    for (std::size_t i = 0; i < im_.lines.size(); ++i) im_.lines[i]->restore(*saved_[i]);
+    if (message_) *message_ = "t = " + std::to_string(t1_) + " s: " + what;
+    return false;
+  }
+
+  SystemDynamics::Impl& im_;
+  const double dt_, t1_;
+  const int m_;  ///< unknowns of the point iteration: 3 per free point
+  std::string* message_;
+  std::vector<std::shared_ptr<const DynamicSolver3D::Saved>> saved_;  ///< the lines at the step's start
+  std::string why_;      ///< what the last failed line step said
+  double scale_ = 1.0;   ///< largest force on a point seen in the step [N]
+};
+
+}  // namespace
+
+bool SystemDynamics::advanceTo(double t_end, std::string* message) {
+  Impl& im = *impl_;
+  const double eps = 1e-9 * im.opt.dt;
+  while (im.t < t_end - eps) {
+    const double dt = std::min(im.opt.dt, t_end - im.t);
+    if (!PointStep(im, dt, message).run()) return false;
   }
   im.t = std::max(im.t, t_end);
   return true;

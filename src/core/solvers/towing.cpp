@@ -70,14 +70,23 @@ Vector3d tangentOf(const Vector3d& F, const Environment& env, const Material& m,
 
 }  // namespace
 
-Eigen::VectorXd towedInitialGuess3D(const Problem& p, const Mesh& mesh) {
+namespace {
+
+/// The towed line's shape marched up from the free end: positions r (from the end at depth
+/// z_guess), tangents t and tensions T of every node.
+struct TowedShape {
+  std::vector<Vector3d> r, t;
+  std::vector<double> T;
+};
+
+/// F_0 = -(weight + drag of the end body) (0 without one), then F_{j+1} = F_j - h g_j with the
+/// wet weight and the drag of the steady current on a tangent along F (no bending); body
+/// junctions add their loads.
+TowedShape marchFromFreeEnd(const Problem& p, const Mesh& mesh, double z_guess) {
   using namespace eq3d;
   const Environment& env = p.environment;
   const std::size_t n = mesh.nodes.size();
-  std::vector<Vector3d> r(n), t(n);
-  std::vector<double> T(n);
-  // Start below the tow point: the current there sets the drag of the end.
-  const double z_guess = std::min(p.top.z, 0.0) - 0.5 * p.totalLength();
+  TowedShape sh{std::vector<Vector3d>(n), std::vector<Vector3d>(n), std::vector<double>(n)};
   Vector3d F(0.0, 0.0, 0.0), tan(0.0, 0.0, 1.0);
   const Material& m0 = p.materials[mesh.nodes[0].material];
   if (p.end_body != Problem::kNoBody) {
@@ -88,27 +97,41 @@ Eigen::VectorXd towedInitialGuess3D(const Problem& p, const Mesh& mesh) {
     }
   }
   tan = tangentOf(F, env, m0, waterAt(env, z_guess), tan);
-  r[0] = Vector3d(0.0, 0.0, z_guess);
-  t[0] = tan;
-  T[0] = F.dot(tan);
+  sh.r[0] = Vector3d(0.0, 0.0, z_guess);
+  sh.t[0] = tan;
+  sh.T[0] = F.dot(tan);
   for (std::size_t j = 0; j + 1 < n; ++j) {
     const MeshInterval& iv = mesh.intervals[j];
     const Material& m = p.materials[mesh.nodes[j].material];
-    const Vector3d w = waterAt(env, r[j].z());
+    const Vector3d w = waterAt(env, sh.r[j].z());
     if (iv.h > 0.0) {
       // Midpoint rule on dF/ds = -g(t(F)).
-      const Vector3d Fm = F - 0.5 * iv.h * lineLoad(env, m, t[j], w);
-      const Vector3d tm = tangentOf(Fm, env, m, w, t[j]);
+      const Vector3d Fm = F - 0.5 * iv.h * lineLoad(env, m, sh.t[j], w);
+      const Vector3d tm = tangentOf(Fm, env, m, w, sh.t[j]);
       F -= iv.h * lineLoad(env, m, tm, w);
     } else {
-      for (std::size_t b : iv.bodies) F -= bodyLoad(env, p.bodies[b], t[j], w);
+      for (std::size_t b : iv.bodies) F -= bodyLoad(env, p.bodies[b], sh.t[j], w);
     }
     const Material& mb = p.materials[mesh.nodes[j + 1].material];
-    t[j + 1] = tangentOf(F, env, mb, w, t[j]);
-    T[j + 1] = std::max(F.dot(t[j + 1]), 0.0);
-    const double pa = 1.0 + m.strainAt(T[j]), pb = 1.0 + mb.strainAt(T[j + 1]);
-    r[j + 1] = r[j] + 0.5 * iv.h * (pa * t[j] + pb * t[j + 1]);
+    sh.t[j + 1] = tangentOf(F, env, mb, w, sh.t[j]);
+    sh.T[j + 1] = std::max(F.dot(sh.t[j + 1]), 0.0);
+    const double pa = 1.0 + m.strainAt(sh.T[j]), pb = 1.0 + mb.strainAt(sh.T[j + 1]);
+    sh.r[j + 1] = sh.r[j] + 0.5 * iv.h * (pa * sh.t[j] + pb * sh.t[j + 1]);
   }
+  return sh;
+}
+
+}  // namespace
+
+Eigen::VectorXd towedInitialGuess3D(const Problem& p, const Mesh& mesh) {
+  using namespace eq3d;
+  const std::size_t n = mesh.nodes.size();
+  // Start below the tow point: the current there sets the drag of the end.
+  const double z_guess = std::min(p.top.z, 0.0) - 0.5 * p.totalLength();
+  const TowedShape sh = marchFromFreeEnd(p, mesh, z_guess);
+  const std::vector<Vector3d>& r = sh.r;
+  const std::vector<Vector3d>& t = sh.t;
+  const std::vector<double>& T = sh.T;
   const Vector3d shift = Vector3d(p.top.x, p.top.y, p.top.z) - r[n - 1];
 
   // Frames: e1 = t; the first e3 horizontal (or y for a vertical tangent), then parallel transport.

@@ -100,6 +100,14 @@ class WaveVelocityCache {
   static constexpr std::size_t kStateGroup = kStateRows * kGroup;
 
  private:
+  struct Component;  ///< one component's constants before sorting (wave_velocity_cache.cpp)
+  /// The field's components' constants (k, kx, omega, phase, depth factors), in increasing skip
+  /// depth (the order of the tables).
+  std::vector<Component> sortedComponents() const;
+  /// The per-component tables and the kernel's constants (coef_) of the sorted components.
+  void fillTables(const std::vector<Component>& comps);
+  /// Empty per-point state for `points` points.
+  void allocatePoints(std::size_t points);
   std::size_t seenAt(double zc) const;  ///< components summed at a clamped, relevant elevation
   /// expansionRadius from G3 at the reference and the largest k summed.
   static double expansionRadiusFor(double g3, double k_n);

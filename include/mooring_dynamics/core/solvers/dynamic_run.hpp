@@ -126,6 +126,123 @@ StepReport advanceWithCuts(double& t, double base, int max_levels, double t_end,
 /// end: the sample times are k * dout, exact to a few ulps, far inside 1e-9.
 inline constexpr double kEndTimeTolerance = 1e-9;
 
+namespace detail {
+
+/// What a run records: the output samples of the top, the anchor and the recorded nodes (the
+/// nodes nearest to dynamics.record_s), and the snapshots of the whole line.
+template <class Solver>
+class SeriesRecorder {
+ public:
+  SeriesRecorder(const Solver& solver, const DynamicOptions& opt, double dout, DynamicSeries& out)
+      : solver_(solver), out_(out) {
+    const std::vector<double> s = solver.nodeArclengths();
+    for (double want : opt.record_s) {
+      std::size_t best = 0;
+      for (std::size_t j = 1; j < s.size(); ++j)
+        if (std::abs(s[j] - want) < std::abs(s[best] - want)) best = j;
+      rec_.push_back(best);
+      out.record_s.push_back(s[best]);
+    }
+    out.node_tension.assign(rec_.size(), {});
+    out.node_x.assign(rec_.size(), {});
+    out.node_y.assign(rec_.size(), {});
+    out.node_z.assign(rec_.size(), {});
+    snap_every_ = opt.snapshot_interval > 0.0
+                      ? std::max(1L, static_cast<long>(std::llround(opt.snapshot_interval / dout)))
+                      : 0;
+  }
+
+  /// Sample k, at time t.
+  void record(double t, long k) {
+    const StaticResult r = solver_.snapshot();
+    out_.t.push_back(t);
+    out_.top_tension.push_back(r.nodes.back().tension);
+    out_.anchor_tension.push_back(r.nodes.front().tension);
+    out_.top_x.push_back(r.nodes.back().x);
+    out_.top_y.push_back(r.nodes.back().y);
+    out_.top_z.push_back(r.nodes.back().z);
+    for (std::size_t i = 0; i < rec_.size(); ++i) {
+      out_.node_tension[i].push_back(r.nodes[rec_[i]].tension);
+      out_.node_x[i].push_back(r.nodes[rec_[i]].x);
+      out_.node_y[i].push_back(r.nodes[rec_[i]].y);
+      out_.node_z[i].push_back(r.nodes[rec_[i]].z);
+    }
+    if (snap_every_ > 0 && k % snap_every_ == 0) {
+      out_.snapshots.push_back(r);
+      out_.snapshot_t.push_back(t);
+    }
+  }
+
+ private:
+  const Solver& solver_;
+  DynamicSeries& out_;
+  std::vector<std::size_t> rec_;  ///< the recorded nodes
+  long snap_every_ = 0;           ///< a snapshot every this many samples (0: none)
+};
+
+/// Advances the solver to the sample times. A position table is followed as the lockstep node
+/// follows its samples: row by row, the top on the segment from the previous row (the first from
+/// the static top) to the next, advanced to every row time; the same samples through the node
+/// give the same bits.
+template <class Solver>
+class RowFollower {
+ public:
+  RowFollower(Solver& solver, const TopMotion& tm)
+      : solver_(solver),
+        rows_(tm.table),
+        by_rows_(tm.type == TopMotion::Type::PositionTable && !tm.table.empty()),
+        seg_p_{solver.initialStatic().nodes.back().x, solver.initialStatic().nodes.back().y,
+               solver.initialStatic().nodes.back().z} {
+    while (by_rows_ && next_row_ < rows_.size() && !(rows_[next_row_].t > 0.0)) ++next_row_;  // the start row
+  }
+
+  /// Advance to t, row by row when following a table (the rows' times are step ends).
+  StepReport advance(double t) {
+    StepReport rep;
+    while (by_rows_ && next_row_ < rows_.size() && rows_[next_row_].t <= t) {
+      setSegment();
+      rep = solver_.advanceTo(rows_[next_row_].t);
+      if (!rep.ok) return rep;
+      seg_t_ = rows_[next_row_].t;
+      seg_p_[0] = rows_[next_row_].x;
+      seg_p_[1] = rows_[next_row_].y;
+      seg_p_[2] = rows_[next_row_].z;
+      ++next_row_;
+    }
+    if (by_rows_ && next_row_ < rows_.size()) setSegment();
+    if (by_rows_ && next_row_ >= rows_.size()) holdAtLastRow();
+    return solver_.time() < t ? solver_.advanceTo(t) : rep;
+  }
+
+ private:
+  /// The top on the segment from the last row passed to the next.
+  void setSegment() {
+    const TopMotion::Row r = rows_[next_row_];
+    const double t0 = seg_t_, x0 = seg_p_[0], y0 = seg_p_[1], z0 = seg_p_[2];
+    if constexpr (std::is_same_v<Solver, DynamicSolver2D>)
+      solver_.setTopInput([=](double tau) { return segmentTopInput(tau, t0, x0, z0, r.t, r.x, r.z); });
+    else
+      solver_.setTopInput([=](double tau) { return segmentTopState(tau, t0, x0, y0, z0, r.t, r.x, r.y, r.z); });
+  }
+  /// After the last row: held there, at rest.
+  void holdAtLastRow() {
+    const double x = seg_p_[0], y = seg_p_[1], z = seg_p_[2], t_last = seg_t_;
+    if constexpr (std::is_same_v<Solver, DynamicSolver2D>)
+      solver_.setTopInput([=](double) { return segmentTopInput(t_last + 1.0, t_last, x, z, t_last + 1.0, x, z); });
+    else
+      solver_.setTopInput([=](double) { return segmentTopState(t_last + 1.0, t_last, x, y, z, t_last + 1.0, x, y, z); });
+  }
+
+  Solver& solver_;
+  const std::vector<TopMotion::Row>& rows_;
+  const bool by_rows_;
+  std::size_t next_row_ = 0;
+  double seg_t_ = 0.0;  ///< time of the last row passed [s]
+  double seg_p_[3];     ///< its position (the static top before the first) [m]
+};
+
+}  // namespace detail
+
 template <class Solver>
 DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(double, double)>& progress) {
   const auto wall0 = std::chrono::steady_clock::now();
@@ -136,97 +253,22 @@ DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(do
                                 ": must be > 0 for a dynamic run");
   Solver solver(problem);
   out.initial_static = solver.initialStatic();
-  const std::vector<double> s = solver.nodeArclengths();
-  std::vector<std::size_t> rec;
-  for (double want : opt.record_s) {
-    std::size_t best = 0;
-    for (std::size_t j = 1; j < s.size(); ++j)
-      if (std::abs(s[j] - want) < std::abs(s[best] - want)) best = j;
-    rec.push_back(best);
-    out.record_s.push_back(s[best]);
-  }
-  out.node_tension.assign(rec.size(), {});
-  out.node_x.assign(rec.size(), {});
-  out.node_y.assign(rec.size(), {});
-  out.node_z.assign(rec.size(), {});
-
   const double dout = opt.output_interval > 0.0 ? opt.output_interval : opt.dt;
   const long samples = static_cast<long>(std::floor(opt.duration / dout + 1e-9));
-  const long snap_every = opt.snapshot_interval > 0.0
-                              ? std::max(1L, static_cast<long>(std::llround(opt.snapshot_interval / dout)))
-                              : 0;
-  auto record = [&](double t, long k) {
-    const StaticResult r = solver.snapshot();
-    out.t.push_back(t);
-    out.top_tension.push_back(r.nodes.back().tension);
-    out.anchor_tension.push_back(r.nodes.front().tension);
-    out.top_x.push_back(r.nodes.back().x);
-    out.top_y.push_back(r.nodes.back().y);
-    out.top_z.push_back(r.nodes.back().z);
-    for (std::size_t i = 0; i < rec.size(); ++i) {
-      out.node_tension[i].push_back(r.nodes[rec[i]].tension);
-      out.node_x[i].push_back(r.nodes[rec[i]].x);
-      out.node_y[i].push_back(r.nodes[rec[i]].y);
-      out.node_z[i].push_back(r.nodes[rec[i]].z);
-    }
-    if (snap_every > 0 && k % snap_every == 0) {
-      out.snapshots.push_back(r);
-      out.snapshot_t.push_back(t);
-    }
-  };
-  record(0.0, 0);
+  detail::SeriesRecorder<Solver> recorder(solver, opt, dout, out);
+  recorder.record(0.0, 0);
   out.completed = true;
-  // A position table is followed as the lockstep node follows its samples: row by row, the top
-  // on the segment from the previous row (the first from the static top) to the next, advanced
-  // to every row time; the same samples through the node give the same bits.
-  const std::vector<TopMotion::Row>& rows = opt.top_motion.table;
-  const bool by_rows = opt.top_motion.type == TopMotion::Type::PositionTable && !rows.empty();
-  std::size_t next_row = 0;
-  double seg_t = 0.0;
-  double seg_p[3] = {solver.initialStatic().nodes.back().x, solver.initialStatic().nodes.back().y,
-                     solver.initialStatic().nodes.back().z};
-  while (by_rows && next_row < rows.size() && !(rows[next_row].t > 0.0)) ++next_row;  // the start row
-  auto setSegment = [&]() {
-    const TopMotion::Row r = rows[next_row];
-    const double t0 = seg_t, x0 = seg_p[0], y0 = seg_p[1], z0 = seg_p[2];
-    if constexpr (std::is_same_v<Solver, DynamicSolver2D>)
-      solver.setTopInput([=](double tau) { return segmentTopInput(tau, t0, x0, z0, r.t, r.x, r.z); });
-    else
-      solver.setTopInput([=](double tau) { return segmentTopState(tau, t0, x0, y0, z0, r.t, r.x, r.y, r.z); });
-  };
-  // Advance to t, row by row when following a table (the rows' times are step ends).
-  auto advance = [&](double t) {
-    StepReport rep;
-    while (by_rows && next_row < rows.size() && rows[next_row].t <= t) {
-      setSegment();
-      rep = solver.advanceTo(rows[next_row].t);
-      if (!rep.ok) return rep;
-      seg_t = rows[next_row].t;
-      seg_p[0] = rows[next_row].x;
-      seg_p[1] = rows[next_row].y;
-      seg_p[2] = rows[next_row].z;
-      ++next_row;
-    }
-    if (by_rows && next_row < rows.size()) setSegment();
-    if (by_rows && next_row >= rows.size()) {  // after the last row: held there, at rest
-      const double x = seg_p[0], y = seg_p[1], z = seg_p[2], t_last = seg_t;
-      if constexpr (std::is_same_v<Solver, DynamicSolver2D>)
-        solver.setTopInput([=](double) { return segmentTopInput(t_last + 1.0, t_last, x, z, t_last + 1.0, x, z); });
-      else
-        solver.setTopInput([=](double) { return segmentTopState(t_last + 1.0, t_last, x, y, z, t_last + 1.0, x, y, z); });
-    }
-    return solver.time() < t ? solver.advanceTo(t) : rep;
-  };
+  detail::RowFollower<Solver> follower(solver, opt.top_motion);
   const bool partial_end = opt.duration - samples * dout > 1e-9 * dout;
   for (long k = 1; k <= samples + (partial_end ? 1 : 0); ++k) {
     const double t = k <= samples ? k * dout : opt.duration;
-    const StepReport rep = advance(t);
+    const StepReport rep = follower.advance(t);
     if (!rep.ok) {
       out.completed = false;
       out.message = rep.message;
       break;
     }
-    record(t, k);
+    recorder.record(t, k);
     if (progress) progress(t, opt.duration);
   }
   // Whatever the loop did, a run that did not reach its end time is not complete (an output grid

@@ -5,10 +5,13 @@
 // through the anchor toward the top, turned into that plane.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
+#include "mooring_dynamics/core/equations/end_conditions.hpp"
 #include "mooring_dynamics/core/equations/mesh.hpp"
 #include "mooring_dynamics/core/model/model.hpp"
 #include "mooring_dynamics/core/numerics/newton.hpp"
@@ -18,17 +21,17 @@ namespace mooring_dynamics {
 namespace core {
 
 /// The assembled 3-D static problem as a NewtonSystem (exposed for tests).
-/// Row layout: 10 anchor rows, 16 rows per interval, 6 top rows; 16 unknowns per node
-/// (eq3d::Var). Interval j couples nodes j and j + 1: half-bandwidths kl = 25, ku = 21.
+/// Row layout: the lower end's 10 rows, 16 rows per interval, the top's 6 rows; 16 unknowns per
+/// node (eq3d::Var). Interval j couples nodes j and j + 1: half-bandwidths kl = 25, ku = 21.
 class StaticSystem3D : public NewtonSystem {
  public:
   /// q_ref: the frame the anchor's twist is measured from (the initial guess's anchor frame).
   StaticSystem3D(const Problem& problem, const Mesh& mesh, const double* q_ref);
   int size() const override;
-  int lowerBandwidth() const override { return 25; }
-  int upperBandwidth() const override { return 21; }
-  int blockSize() const override { return 16; }    // node-by-node block elimination
-  int leadingRows() const override { return 10; }
+  int lowerBandwidth() const override { return lower_rows_ + eq3d::N - 1; }
+  int upperBandwidth() const override { return 2 * eq3d::N - 1 - lower_rows_; }
+  int blockSize() const override { return eq3d::N; }  // node-by-node block elimination
+  int leadingRows() const override { return lower_rows_; }
   void evaluate(const Eigen::VectorXd& Y, Eigen::VectorXd& R, BandedMatrix* J) override;
   double scale(int i) const override;
   std::string describe(int i) const override;
@@ -38,8 +41,17 @@ class StaticSystem3D : public NewtonSystem {
   void conditionStep(const Eigen::VectorXd& Y, Eigen::VectorXd& dY) const override;
 
  private:
+  /// The rows of an end (end_conditions.hpp) at the node whose unknowns start at col0, from row0.
+  void endRows(const EndCondition3D& end, int row0, int col0, const eq3d::Water& water, const Eigen::VectorXd& Y,
+               Eigen::VectorXd& R, BandedMatrix* J) const;
+  /// The sixteen rows of interval j (eq. 11) or of a pin junction.
+  void intervalRows(int j, const std::vector<eq3d::Water>& water, const Eigen::VectorXd& Y, Eigen::VectorXd& R,
+                    BandedMatrix* J) const;
+
   const Problem& problem_;
   const Mesh& mesh_;
+  std::unique_ptr<EndCondition3D> lower_, upper_;  ///< the anchor or free end, and the top
+  int lower_rows_;                                 ///< rows of the lower end, before the intervals'
   double q_ref_[4];
   double chi_[16];
 };

@@ -1,0 +1,141 @@
+// The two ends of a line as small types behind one interface (issue 23): the rows an end adds to
+// the Newton system at its node (paper eqs. 33-34, sections 5.1-5.2) in statics and dynamics,
+// and the state an end carries from one time level to the next. The solvers hold "the lower end"
+// and "the upper end" and call them without knowing which kind they hold; a new kind of end is
+// one new class here and one case in its factory (docs/architecture.md, "A new end condition").
+//
+// An end only computes residual rows on its own node's unknowns, in double or in automatic-
+// differentiation scalars; the solver copies them into its residual vector and, from the AD
+// derivatives, into the end's block of the Jacobian (this layer knows no matrix). The rows are the
+// arithmetic the solvers had inline, operation for operation, so that results stay bit-identical.
+//
+// Row counts, node unknowns and the row order at each end:
+//   2-D statics (eq2d, 6 unknowns):   anchor 3 rows, top 3 rows (moment free + 2 conditions)
+//   2-D dynamics (eq2dyn, 8):         anchor 5 rows, top 3 rows
+//   3-D statics (eq3d, 16):           lower end 10 rows, top 6 rows
+//   3-D dynamics (eq3d, 16):          anchored lower end 10 rows, top 6; a free lower end 7 rows
+//                                     and its top (tow point or drifting buoy) 9 rows
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "mooring_dynamics/core/equations/equations2d.hpp"
+#include "mooring_dynamics/core/equations/equations2d_dynamic.hpp"
+#include "mooring_dynamics/core/equations/equations3d.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/model/top_motion.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+
+/// The most rows any end adds (the 3-D anchor's ten): the size of a solver's row buffer.
+constexpr int kMaxEndRows = 10;
+
+// --- 2-D ---------------------------------------------------------------------------------------
+
+/// One end of a 2-D line (the paper's equations: the line in the x-z plane).
+class EndCondition2D {
+ public:
+  using ADs = Eigen::AutoDiffScalar<Eigen::Matrix<double, eq2d::N, 1>>;    ///< statics' unknowns
+  using ADd = Eigen::AutoDiffScalar<Eigen::Matrix<double, eq2dyn::N, 1>>;  ///< dynamics' unknowns
+
+  virtual ~EndCondition2D() = default;
+  /// A short name for messages and tests ("anchor", "force top", ...).
+  virtual const char* name() const = 0;
+
+  /// Static rows (eq. 33, section 5.1) on the node's unknowns y (eq2d::Var): staticRows() of r.
+  virtual int staticRows() const = 0;
+  virtual void staticResidual(const ADs* y, ADs* r) const = 0;
+
+  /// Dynamic rows (eq. 34) on the node's unknowns y (eq2dyn::Var) at the new time level, with the
+  /// top's prescribed motion or force `in` at that time (unused at the anchor).
+  virtual int dynamicRows() const = 0;
+  virtual void dynamicResidual(const TopState& in, const ADd* y, ADd* r) const = 0;
+
+  /// A force the end prescribes [N] (0 when none): with the line's weight, the scale of the
+  /// forces in the error measure (chi_m of eq. 39).
+  virtual double characteristicForce() const { return 0.0; }
+};
+
+/// The lower end of a 2-D line: the anchor (a free lower end needs the 3-D model).
+std::unique_ptr<EndCondition2D> makeLowerEnd2D(const Problem& problem);
+/// The top of a 2-D line from problem.top: a position, force, surface-buoy or subsurface-body top
+/// in statics, each driven by the top motion (velocity, position feedback or force) in dynamics.
+/// `top_material`: the material of the top node (outlives the end).
+std::unique_ptr<EndCondition2D> makeUpperEnd2D(const Problem& problem, const Material& top_material);
+
+// --- 3-D ---------------------------------------------------------------------------------------
+
+/// What a 3-D end's static rows read besides its node's unknowns.
+struct StaticEnd3D {
+  const eq3d::Water* water = nullptr;  ///< the steady current at the node
+  const double* q_ref = nullptr;       ///< frame the lower end's twist is measured from (4 values)
+};
+
+/// The generalized-alpha weights of a step: alpha_m, alpha_k and the rate of eq. 26,
+/// Yd = c1 (Y - Yp) - c0 Ydp.
+struct AlphaWeights {
+  double am = 0.0, ak = 0.0, c1 = 0.0, c0 = 0.0;
+};
+
+/// What a 3-D end's dynamic rows read besides its node's unknowns at the iterate.
+struct DynamicEnd3D {
+  double t = 0.0;                      ///< the new time level [s]
+  const TopState* input = nullptr;     ///< the top's prescribed motion or force at t
+  const double* yp = nullptr;          ///< the node's unknowns at the previous level (16)
+  const double* ydp = nullptr;         ///< their rates at the previous level (16)
+  const eq3d::Water* water = nullptr;  ///< water at the node at the iterate
+  AlphaWeights w;
+};
+
+/// One end of a 3-D line.
+class EndCondition3D {
+ public:
+  using AD = Eigen::AutoDiffScalar<Eigen::Matrix<double, eq3d::N, 1>>;
+
+  virtual ~EndCondition3D() = default;
+  virtual const char* name() const = 0;
+
+  /// Static rows on the node's unknowns y (eq3d::Var): staticRows() of r.
+  virtual int staticRows() const = 0;
+  virtual void staticResidual(const StaticEnd3D& c, const AD* y, AD* r) const = 0;
+
+  /// Dynamic rows at the new time level: dynamicRows() of r, in double (the residual alone) or
+  /// in AD scalars (with the Jacobian block).
+  virtual int dynamicRows() const = 0;
+  virtual void dynamicResidual(const DynamicEnd3D& c, const double* y, double* r) const = 0;
+  virtual void dynamicResidual(const DynamicEnd3D& c, const AD* y, AD* r) const = 0;
+
+  /// A force the end prescribes [N] (0 when none), as in 2-D.
+  virtual double characteristicForce() const { return 0.0; }
+
+  /// An end with a balance weighted in time (eq. 30: a free end's body, a top body, a drifting
+  /// buoy) keeps the spatial part of it at the accepted level: taken here from the node's
+  /// unknowns y and water w at time t, with the top's input `top` (called only by an end that
+  /// needs it). The others keep nothing.
+  virtual void acceptLevel(const double* y, const eq3d::Water& w, double t,
+                           const std::function<TopState(double)>& top) {
+    (void)y, (void)w, (void)t, (void)top;
+  }
+  /// That state, for a solver's save and restore (empty for an end without one).
+  virtual std::vector<double> state() const { return {}; }
+  virtual void setState(const std::vector<double>& s) { (void)s; }
+};
+
+/// The lower end of a 3-D line: the anchor, or a free end (towing, drifting) with its body.
+/// `end_material`: the material of node 0 (outlives the end).
+std::unique_ptr<EndCondition3D> makeLowerEnd3D(const Problem& problem, const Material& end_material);
+/// An anchor that moves (a line below a free point or a vessel of a system): its velocity and
+/// position prescribed by `motion` in dynamics, the anchor's rows in statics.
+std::unique_ptr<EndCondition3D> makeMovingAnchor3D(const Problem& problem, std::function<TopState(double)> motion);
+/// The top of a 3-D line: a position, force or surface-buoy top (driven by the top motion in
+/// dynamics), a subsurface body, a tow point (over a free lower end) or a drifting buoy.
+std::unique_ptr<EndCondition3D> makeUpperEnd3D(const Problem& problem, const Material& top_material);
+
+}  // namespace core
+}  // namespace mooring_dynamics
