@@ -6,7 +6,8 @@
 //     same rows (its vessel_timeseries.csv),
 // live (test_vessel_node.test) and from a bag replayed with --clock under use_sim_time
 // (test_vessel_node.replay.test), and live from nav_msgs/Odometry (test_vessel_node.odom.test, its
-// twist set to nonsense: unused) and from tf (test_vessel_node.tf.test, one transform at a time,
+// twist set to nonsense and ~use_twist false: unused; test_vessel_node.odom_twist.test, the exact
+// twist of the track used: the Hermite path, against a CLI table with the velocity columns) and from tf (test_vessel_node.tf.test, one transform at a time,
 // each waiting for its wrench as a simulator in lockstep would). Live PoseStamped only: bad samples (NaN quaternion, non-unit quaternion,
 // a stamp going back) are dropped, counted in /diagnostics, and the wrench stays finite. Both:
 // ~solve_static (VesselStatics) returns the core's static wrench bit for bit and a stiffness
@@ -55,11 +56,13 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::string g_mode = "live", g_node = "/vessel";
 std::string g_source = "pose";  // live: pose (PoseStamped), odometry (Odometry) or tf (world -> base_link)
+bool g_twist = false;           // odometry: the node uses the twist (~use_twist true); core and CLI get it too
 const std::string kProblem = std::string(MD_SOURCE_DIR) + "/test/data/small_vessel.yaml";
 
 struct Sample {
   ros::Time stamp;
   geometry_msgs::Pose pose;
+  core::BodyTwist twist;  ///< the track's exact twist, body frame (REP 105, as in nav_msgs/Odometry)
 };
 
 /// Surge 0.5 m (period 4 s) and yaw 2 deg (period 5 s), from the file's pose (0, 0, 0, yaw 0).
@@ -73,6 +76,11 @@ std::vector<Sample> track() {
     s.pose.position.x = 0.5 * std::sin(2 * kPi * t / 4.0);
     s.pose.orientation.z = std::sin(0.5 * yaw);
     s.pose.orientation.w = std::cos(0.5 * yaw);
+    // The derivatives: surge velocity (world x) turned into the body by -yaw; yaw rate about z.
+    const double xdot = 0.5 * (2 * kPi / 4.0) * std::cos(2 * kPi * t / 4.0);
+    const double yawdot = 2.0 * kPi / 180.0 * (2 * kPi / 5.0) * std::cos(2 * kPi * t / 5.0);
+    s.twist.linear = Eigen::Vector3d(std::cos(yaw) * xdot, -std::sin(yaw) * xdot, 0.0);
+    s.twist.angular = Eigen::Vector3d(0.0, 0.0, yawdot);
     v.push_back(s);
   }
   return v;
@@ -94,7 +102,7 @@ Row rowOf(const geometry_msgs::WrenchStamped& b, const geometry_msgs::WrenchStam
 }
 
 /// core::VesselLockstep on the same samples, as the node feeds them (time = stamp - first stamp).
-std::vector<Row> coreSeries(const std::vector<Sample>& tr) {
+std::vector<Row> coreSeries(const std::vector<Sample>& tr, bool with_twist = g_twist) {
   core::SystemProblem s = core::loadSystemFromFile(kProblem);
   core::DynamicOptions dyn = s.dynamics;
   dyn.threads = 1;
@@ -103,8 +111,9 @@ std::vector<Row> coreSeries(const std::vector<Sample>& tr) {
   core::VesselLockstep run(s, dyn, lo);
   std::vector<Row> out;
   for (const Sample& x : tr) {
-    const core::VesselLockstep::Result r =
-        run.onSample((x.stamp - tr[0].stamp).toSec(), mooring_dynamics::ros_bridge::toRigidPose(x.pose));
+    const core::VesselLockstep::Result r = run.onSample((x.stamp - tr[0].stamp).toSec(),
+                                                        mooring_dynamics::ros_bridge::toRigidPose(x.pose),
+                                                        with_twist ? &x.twist : nullptr);
     EXPECT_TRUE(r.publish) << r.message;
     const core::VesselWrench w = run.wrench();
     Row row;
@@ -136,12 +145,16 @@ std::vector<std::vector<std::string>> cliSeries(const std::vector<Sample>& tr) {
   fs::create_directories(dir);
   {
     std::ofstream t(dir / "motion.csv");
-    t << "t,x,y,z,qx,qy,qz,qw\n";
+    t << (g_twist ? "t,x,y,z,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz\n" : "t,x,y,z,qx,qy,qz,qw\n");
     for (const Sample& s : tr) {
       const auto& p = s.pose;
       t << exact((s.stamp - tr[0].stamp).toSec()) << "," << exact(p.position.x) << "," << exact(p.position.y) << ","
         << exact(p.position.z) << "," << exact(p.orientation.x) << "," << exact(p.orientation.y) << ","
-        << exact(p.orientation.z) << "," << exact(p.orientation.w) << "\n";
+        << exact(p.orientation.z) << "," << exact(p.orientation.w);
+      if (g_twist)
+        for (const Eigen::Vector3d* v : {&s.twist.linear, &s.twist.angular})
+          for (int i = 0; i < 3; ++i) t << "," << exact((*v)[i]);
+      t << "\n";
     }
     std::ifstream in(kProblem);
     std::stringstream ss;
@@ -245,7 +258,16 @@ TEST(VesselNode, WrenchSeriesMatchesCoreAndCli) {
       m.header.frame_id = "world";
       m.child_frame_id = "base_link";
       m.pose.pose = s.pose;
-      m.twist.twist.linear.x = 1e3;  // not used: the velocities come from the poses
+      if (g_twist) {  // the exact twist, body frame: used (~use_twist true, the default)
+        m.twist.twist.linear.x = s.twist.linear.x();
+        m.twist.twist.linear.y = s.twist.linear.y();
+        m.twist.twist.linear.z = s.twist.linear.z();
+        m.twist.twist.angular.x = s.twist.angular.x();
+        m.twist.twist.angular.y = s.twist.angular.y();
+        m.twist.twist.angular.z = s.twist.angular.z();
+      } else {
+        m.twist.twist.linear.x = 1e3;  // not used (~use_twist false): the velocities come from the poses
+      }
       pub.publish(m);
       ros::WallDuration(0.02).sleep();
       ros::spinOnce();
@@ -290,6 +312,14 @@ TEST(VesselNode, WrenchSeriesMatchesCoreAndCli) {
   }
   // The surge and yaw motion does something: the wrench is not the same at every sample.
   EXPECT_NE(ref.front()[0], ref.back()[0]);
+  if (g_twist) {
+    // The twist is used: the Hermite path's wrench differs from the pose-only path's.
+    const std::vector<Row> pose_only = coreSeries(tr, false);
+    double diff = 0.0;
+    for (std::size_t k = 0; k < tr.size(); ++k) diff = std::max(diff, std::abs(pose_only[k][0] - ref[k][0]));
+    EXPECT_GT(diff, 0.0) << "the twist changed nothing";
+    std::printf("odometry twist: largest surge-force difference Hermite vs pose-only path %.3g N\n", diff);
+  }
 }
 
 TEST(VesselNode, BadSamplesAreCountedAndTheWrenchStaysFinite) {
@@ -399,6 +429,7 @@ int main(int argc, char** argv) {
   pnh.param<std::string>("mode", g_mode, g_mode);
   pnh.param<std::string>("node", g_node, g_node);
   pnh.param<std::string>("source", g_source, g_source);
+  pnh.param("twist", g_twist, g_twist);
   Listener l;
   g_listener = &l;
   return RUN_ALL_TESTS();
