@@ -6,13 +6,16 @@
 //     ~threads 2),
 //   * equal, printed to 12 significant digits, to `cable_sim dynamic` on the file (its
 //     system_timeseries.csv: the buoy's position and every leg's top tension),
-// that nothing is published between grid points, that ~solve_static (SystemStatics) returns
+// that nothing is published between grid points (live: test_system_dynamic_node.test; and from a
+// bag played with `rosbag play --clock`, test_system_dynamic_node.replay.test, where the run
+// starts at the first /clock the node receives), that ~solve_static (SystemStatics) returns
 // core::solveSystemStatic's solution bit for bit, and that /diagnostics has the run's status
 // ("system lockstep") with its real-time factor and one status per line.
 #include <gtest/gtest.h>
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +30,7 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/PointStamped.h>
 #include <ros/ros.h>
+#include <rosbag/bag.h>
 #include <rosgraph_msgs/Clock.h>
 
 #include "mooring_dynamics/CableState.h"
@@ -45,6 +49,7 @@ const ros::Time kStart(500.0);  // the first /clock: the run's t0
 constexpr double kDt = 0.1;     // [s] the file's dt (no output_interval): the grid
 constexpr int kSteps = 30;      // 3 s
 std::string g_node = "/system_dyn";
+std::string g_mode = "live";  // live: the test publishes /clock; replay: rosbag play --clock
 const std::vector<std::string> kLines = {"leg_e", "leg_nw", "leg_sw"};
 
 /// One row: t, buoy x, y, z, the three top tensions (as cable_sim's system_timeseries.csv).
@@ -150,20 +155,17 @@ void publishClock(ros::Publisher& pub, const ros::Time& t) {
   pub.publish(c);
 }
 
-}  // namespace
-
-TEST(SystemDynamicNode, StatesOnTheGridMatchCoreAndCli) {
-  Listener& l = *g_listener;
+/// Live: the test is the clock. The start (t0 = kStart) is sent until the static state comes back,
+/// then irregular increments (a simulator's), never on the grid except by chance; the node
+/// computes every grid point passed, in turn. Returns the number of grid steps to check.
+int driveLiveClock(Listener& l) {
   ros::NodeHandle nh;
   ros::Publisher clock = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  // The start: the first clock the node sees is t0; sent until the static state comes back.
   for (int i = 0; i < 200 && !l.has(kStart); ++i) {
     publishClock(clock, kStart);
     l.spinUntil([&] { return l.has(kStart); }, 0.1);
   }
-  ASSERT_TRUE(l.has(kStart)) << "no static start state from " << g_node;
-  // Irregular clock increments (a simulator's), never on the grid except by chance; the node
-  // computes every grid point passed, in turn.
+  EXPECT_TRUE(l.has(kStart)) << "no static start state from " << g_node;
   const double offsets[] = {0.05, 0.23, 0.2999, 0.31, 0.71, 1.0, 1.55, 1.9, 2.04, 2.5, 2.77, 3.0};
   for (double dt : offsets) {
     publishClock(clock, kStart + ros::Duration(dt));
@@ -175,17 +177,62 @@ TEST(SystemDynamicNode, StatesOnTheGridMatchCoreAndCli) {
     publishClock(clock, kStart + ros::Duration(3.0));
     l.spinUntil([&] { return l.has(last); }, 0.1);
   }
-  ASSERT_TRUE(l.has(last)) << "no state at the last grid stamp";
+  return kSteps;
+}
+
+/// Replay: `rosbag play --clock` on a bag whose messages span [kStart, kStart + 3 s]. The run
+/// starts at the first /clock the node receives (the first ones may go out before the connection
+/// is up): its static state carries that stamp, returned in `epoch`. Returns the grid steps
+/// published after it.
+int driveReplayClock(Listener& l, ros::Time& epoch) {
+  EXPECT_TRUE(ros::service::waitForService(g_node + "/solve_static", ros::Duration(20.0)));
+  const std::string bag_file = (fs::temp_directory_path() / ("md_system_" + std::to_string(::getpid()) + ".bag")).string();
+  {
+    rosbag::Bag bag(bag_file, rosbag::bagmode::Write);
+    for (int i = 0; i <= 60; ++i) {
+      rosgraph_msgs::Clock c;
+      c.clock = kStart + ros::Duration(0.05 * i);
+      bag.write("/md_ticks", c.clock, c);
+    }
+  }
+  const std::string cmd = "rosbag play --clock -q -r 2 " + bag_file + " >/dev/null 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::remove(bag_file.c_str());
+  l.spinUntil([&] { return !l.buoy.empty(); }, 10.0);
+  if (l.buoy.empty()) return 0;
+  epoch.fromNSec(l.buoy.begin()->first);
+  // rosbag's last /clock may fall just short of the last message's time: the grid points up to
+  // the clock's end, i.e. as many states as arrive (until none has come for a second).
+  std::size_t n = 0;
+  for (int i = 0; i < 30 && (n == 0 || l.buoy.size() != n); ++i) {
+    n = l.buoy.size();
+    l.spinUntil([&] { return l.buoy.size() != n; }, 1.0);
+  }
+  return static_cast<int>(l.buoy.size()) - 1;
+}
+
+}  // namespace
+
+TEST(SystemDynamicNode, StatesOnTheGridMatchCoreAndCli) {
+  Listener& l = *g_listener;
+  ros::Time epoch = kStart;
+  const int steps = g_mode == "replay" ? driveReplayClock(l, epoch) : driveLiveClock(l);
+  ASSERT_GE(steps, 20) << "fewer than 20 grid points (the node missed more than a second of the clock)";
+  auto grid = [&](int k) { return epoch + ros::Duration(static_cast<double>(k) * kDt); };
+  ASSERT_TRUE(l.has(grid(steps))) << "no state at the last grid stamp; " << l.buoy.size() << " states from "
+                                   << (epoch - kStart).toSec() << " s to "
+                                   << (l.buoy.empty() ? 0.0 : ros::Time().fromNSec(l.buoy.rbegin()->first).toSec() - kStart.toSec())
+                                   << " s after t0";
 
   const std::vector<Row> ref = coreSeries();
   const std::vector<std::vector<std::string>> cli = cliSeries();
   ASSERT_EQ(ref.size(), static_cast<std::size_t>(kSteps + 1));
   ASSERT_EQ(cli.size(), ref.size()) << "rows of cable_sim's system_timeseries.csv";
-  EXPECT_EQ(l.buoy.size(), ref.size()) << "one state per grid point, none in between";
+  EXPECT_EQ(l.buoy.size(), static_cast<std::size_t>(steps + 1)) << "one state per grid point, none in between";
   double moved = 0.0;
-  for (int k = 0; k <= kSteps; ++k) {
-    const uint64_t n = gridStamp(k).toNSec();
-    ASSERT_TRUE(l.has(gridStamp(k))) << "no state for grid point " << k;
+  for (int k = 0; k <= steps; ++k) {
+    const uint64_t n = grid(k).toNSec();
+    ASSERT_TRUE(l.has(grid(k))) << "no state for grid point " << k;
     const geometry_msgs::PointStamped& p = l.buoy[n];
     EXPECT_EQ(p.header.frame_id, "world");
     const Row node{p.point.x, p.point.y, p.point.z, l.top[0][n], l.top[1][n], l.top[2][n]};
@@ -198,6 +245,7 @@ TEST(SystemDynamicNode, StatesOnTheGridMatchCoreAndCli) {
   }
   // The waves move the legs and the buoy: the comparison is not between resting states. [m]
   EXPECT_GT(moved, 1e-4);
+  std::printf("system node (%s): %d grid points, buoy moved up to %.3g m (|dx| + |dz|)\n", g_mode.c_str(), steps, moved);
 }
 
 TEST(SystemDynamicNode, SolveStaticIsTheCoreStatics) {
@@ -237,6 +285,7 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "test_system_dynamic_node");
   ros::NodeHandle pnh("~");
   pnh.param<std::string>("node", g_node, g_node);
+  pnh.param<std::string>("mode", g_mode, g_mode);
   Listener l;
   g_listener = &l;
   return RUN_ALL_TESTS();
