@@ -114,6 +114,23 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
                              std::string(e.what()));
   }
   const double ms = (ros::WallTime::now() - w0).toSec() * 1000.0;
+  // TEST HOOK (failure injection, tests only; docs/ros_interface.md): ~test_fail_line names a line
+  // whose step ending at solver time ~test_fail_time [s] counts as failed.
+  std::string fail_line;
+  pnh_.param<std::string>("test_fail_line", fail_line, "");
+  if (!fail_line.empty()) {
+    std::size_t idx = system_.lines.size();
+    for (std::size_t i = 0; i < system_.lines.size(); ++i)
+      if (system_.lines[i].name == fail_line) idx = i;
+    if (idx == system_.lines.size())
+      throw std::runtime_error("parameter " + pnh_.resolveName("test_fail_line") + " = \"" + fail_line +
+                               "\": no line of that name");
+    const double at = doubleParam(pnh_, "test_fail_time", 1.0, [](double v) { return v > 0.0; }, "must be > 0 [s]");
+    lockstep_->setFailureInjection([idx, at](std::size_t line, double t1) {
+      return line == idx && std::abs(t1 - at) < 1e-9;
+    });
+    ROS_WARN("mooring_dynamics: TEST HOOK: line %s fails at solver time %g s (~test_fail_line)", fail_line.c_str(), at);
+  }
 
   std::vector<std::string> names;
   for (std::size_t i = 0; i < system_.lines.size(); ++i) {
