@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cli_common.hpp"
+#include "gnss_input.hpp"
 #include "mooring_dynamics/core/solvers/dynamics2d.hpp"
 #include "mooring_dynamics/core/model/model.hpp"
 #include "mooring_dynamics/core/io/problem_io.hpp"
@@ -286,6 +287,14 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
 
   core::DynamicOptions& dyn = problem.dynamics;
   overrides(dyn);
+  if (dyn.gnss.enabled) {  // a real ship track: its fixes become the top's position table
+    try {
+      gnssTopTable(problem, out);
+    } catch (const std::exception& e) {
+      err << kProg << ": error: " << problem_path << ": " << e.what() << "\n";
+      return kExitBadInput;
+    }
+  }
   if (!(dyn.duration > 0.0)) {
     err << kProg << ": error: " << problem_path
         << ": dynamics.duration: not given; a dynamic run needs the simulated time [s]: add a section\n"

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli_common.hpp"
+#include "gnss_input.hpp"
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/io/vessel_motion_io.hpp"
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
@@ -204,7 +205,18 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
                      std::ostream& err) {
   // The samples: the motion table's rows, or the file's pose held at every dt.
   std::vector<core::PoseSample> samples;
-  if (!s.vessel.motion_table.empty()) {
+  if (s.dynamics.gnss.enabled && !s.vessel.motion_table.empty()) {
+    err << kProg << ": error: dynamics.gnss and vessel.motion_table: give one motion of the vessel\n";
+    return kExitBadInput;
+  }
+  if (s.dynamics.gnss.enabled) {  // a real ship track: its fixes become the vessel's pose samples
+    try {
+      samples = gnssVesselSamples(s, out);
+    } catch (const std::exception& e) {
+      err << kProg << ": error: " << e.what() << "\n";
+      return kExitBadInput;
+    }
+  } else if (!s.vessel.motion_table.empty()) {
     try {
       samples = core::loadVesselMotionTable(s.vessel.motion_table);
     } catch (const std::exception& e) {

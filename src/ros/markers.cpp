@@ -186,13 +186,14 @@ visualization_msgs::MarkerArray makeMarkers(const CableState& state, const core:
   {
     auto m = baseMarker(state, "label", visualization_msgs::Marker::TEXT_VIEW_FACING);
     m.pose.position = state.positions.back();
-    m.pose.position.z += 1.5 * sphere + text;
+    constexpr double kLabelLineSpacing = 1.4;  // text heights between stacked labels
+    m.pose.position.z += 1.5 * sphere + text * (1.0 + kLabelLineSpacing * std::max(options.label_row, 0));
     m.scale.z = text;
     m.color = rgba(1.0, 1.0, 1.0, 1.0);
     char buf[64];
     const double ttop = state.tension.empty() ? 0.0 : state.tension.back();
     std::snprintf(buf, sizeof buf, "T top = %.1f kN", ttop / 1000.0);
-    m.text = buf;
+    m.text = options.label_name.empty() ? std::string(buf) : options.label_name + ": " + buf;
     if (!state.converged) m.text += " (not converged)";
     if (state.slack) m.text += " (slack)";
     out.markers.push_back(m);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/ros/anchor_frames.hpp"
 #include "mooring_dynamics/ros/lockstep_node.hpp"
 #include "mooring_dynamics/ros/static_node.hpp"
 #include "mooring_dynamics/ros/system_dynamic_node.hpp"
@@ -55,6 +56,18 @@ int runNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
     ros::shutdown();
     return 1;
   }
+  // The anchors on /tf_static: fixed frames for users, and ~frame_id on tf for rviz.
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> anchors;
+  const ros::Time now = ros::Time::now();
+  auto lineAnchors = [&](const core::Problem& p) {
+    return [&](const std::string& world, const std::string& prefix) { return anchorFrames(p, world, prefix, now); };
+  };
+  if (static_node) anchors = publishAnchorFrames(pnh, lineAnchors(static_node->problem()));
+  if (lockstep_node) anchors = publishAnchorFrames(pnh, lineAnchors(lockstep_node->problem()));
+  if (system_node)
+    anchors = publishAnchorFrames(pnh, [&](const std::string& world, const std::string& prefix) {
+      return anchorFrames(system_node->system(), world, prefix, now);
+    });
   if (static_node) static_node->start();
   if (system_node) system_node->start();
   ros::spin();

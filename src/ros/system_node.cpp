@@ -71,6 +71,8 @@ bool SystemStaticNode::start() {
     MarkerOptions mo = markerOptionsFor(p, marker_scale_);
     mo.tension_min = tmin;
     mo.tension_max = tmax;
+    mo.label_name = name;  // legs that meet at one point stack their labels there
+    mo.label_row = static_cast<int>(i);
     visualization_msgs::MarkerArray m = makeMarkers(state, system_.environment, mo);
     for (auto& mk : m.markers) {
       if (i > 0 && mk.ns == "scale") continue;

@@ -12,10 +12,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 
 #include <ros/ros.h>
 #include <ros/topic.h>
+#include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "mooring_dynamics/CableState.h"
@@ -153,6 +155,36 @@ TEST(Node, LatchedMarkers) {
     }
   }
   EXPECT_TRUE(line && anchor && top && label && seabed);
+}
+
+// Each node puts the line's anchor on /tf_static in its own ~frame_id (world, ocean), at the
+// problem's anchor position (test/data/small_catenary.yaml): rviz then finds its fixed frame.
+TEST(Node, AnchorFramesOnTfStatic) {
+  ros::NodeHandle nh;
+  std::map<std::string, geometry_msgs::TransformStamped> frames;
+  auto sub = nh.subscribe<tf2_msgs::TFMessage>("/tf_static", 10, [&](const tf2_msgs::TFMessage::ConstPtr& m) {
+    for (const auto& t : m->transforms) frames[t.child_frame_id] = t;
+  });
+  const std::map<std::string, std::string> expected = {{g_node.substr(1) + "/anchor", "world"},
+                                                       {g_map_node.substr(1) + "/anchor", "ocean"}};
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(kTimeout.toSec());
+  auto all = [&] {
+    for (const auto& kv : expected)
+      if (!frames.count(kv.first)) return false;
+    return true;
+  };
+  while (!all() && ros::ok() && ros::WallTime::now() < end) {
+    ros::spinOnce();
+    ros::WallDuration(0.01).sleep();
+  }
+  for (const auto& kv : expected) {
+    ASSERT_EQ(frames.count(kv.first), 1u) << kv.first;
+    const auto& t = frames[kv.first];
+    EXPECT_EQ(t.header.frame_id, kv.second);
+    EXPECT_DOUBLE_EQ(t.transform.translation.x, kAnchorX);
+    EXPECT_DOUBLE_EQ(t.transform.translation.y, 0.0);
+    EXPECT_DOUBLE_EQ(t.transform.translation.z, kAnchorZ);
+  }
 }
 
 TEST(Node, SameProblemAsParameterMap) {

@@ -3,12 +3,15 @@
 // the lines meet at the buoy, and the three legs' pulls on the buoy sum to the buoy's wrench.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <map>
 #include <set>
 #include <string>
 
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/ros.h>
+#include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "mooring_dynamics/CableState.h"
@@ -90,6 +93,39 @@ TEST(SystemNode, PublishesEveryLineAndPoint) {
   std::set<std::string> prefixes;
   for (const auto& mk : m.markers) prefixes.insert(mk.ns.substr(0, mk.ns.find('/')));
   EXPECT_EQ(prefixes, (std::set<std::string>{"leg_e", "leg_nw", "leg_sw"}));
+  // The legs' labels name their line and stack above the buoy they share instead of overlapping:
+  // three distinct heights (the rows are 1.4 text heights apart; 0.5 of one is clearly apart).
+  std::set<double> label_heights;
+  for (const auto& mk : m.markers)
+    if (mk.ns.size() > 6 && mk.ns.compare(mk.ns.size() - 6, 6, "/label") == 0) {
+      EXPECT_EQ(mk.text.rfind(mk.ns.substr(0, mk.ns.find('/')) + ": T top = ", 0), 0u) << mk.text;
+      for (double h : label_heights) EXPECT_GT(std::abs(mk.pose.position.z - h), 0.5 * mk.scale.z) << mk.text;
+      label_heights.insert(mk.pose.position.z);
+    }
+  EXPECT_EQ(label_heights.size(), 3u);
+}
+
+// The anchors are on /tf_static at the file's positions (config/three_leg_buoy.yaml), axes as the
+// world's: fixed frames for users, and ~frame_id on tf for rviz (its Global Status stays Ok).
+TEST(SystemNode, AnchorsOnTfStatic) {
+  const std::string node = nodeName();
+  tf2_msgs::TFMessage tf;
+  ASSERT_TRUE(waitFor("/tf_static", tf));
+  std::map<std::string, geometry_msgs::TransformStamped> frames;
+  for (const auto& t : tf.transforms) frames[t.child_frame_id] = t;
+  const std::string prefix = node.substr(1) + "/";
+  const std::map<std::string, std::array<double, 3>> expected = {
+      {"anchor_e", {250, 0, -100}}, {"anchor_nw", {-125, 216.506, -100}}, {"anchor_sw", {-125, -216.506, -100}}};
+  EXPECT_EQ(frames.size(), expected.size());
+  for (const auto& kv : expected) {
+    ASSERT_EQ(frames.count(prefix + kv.first), 1u) << prefix + kv.first;
+    const auto& t = frames[prefix + kv.first];
+    EXPECT_EQ(t.header.frame_id, "world");
+    EXPECT_DOUBLE_EQ(t.transform.translation.x, kv.second[0]);
+    EXPECT_DOUBLE_EQ(t.transform.translation.y, kv.second[1]);
+    EXPECT_DOUBLE_EQ(t.transform.translation.z, kv.second[2]);
+    EXPECT_DOUBLE_EQ(t.transform.rotation.w, 1.0);
+  }
 }
 
 // ~solve_static (SystemStatics) in static mode: the core's system statics, bit for bit, every

@@ -56,6 +56,7 @@ class LockstepNode {
   bool onSolveStatic(SolveStatic::Request& req, SolveStatic::Response& res);
 
   const LockstepDriver& driver() const { return *driver_; }
+  const core::Problem& problem() const { return problem_; }
 
  private:
   void onPose(const geometry_msgs::PoseStamped::ConstPtr& msg);

@@ -6,7 +6,8 @@
 //                 red = highest tension of this state; uniform green when all tensions are equal)
 //   anchor/0      SPHERE at the first node
 //   top/0         SPHERE at the last node
-//   label/0       TEXT_VIEW_FACING above the top: "T top = 12.3 kN" (+ "(not converged)", "(slack)")
+//   label/0       TEXT_VIEW_FACING above the top: "T top = 12.3 kN" (+ "(not converged)", "(slack)"),
+//                 prefixed with MarkerOptions::label_name and raised by its label_row
 //   seabed/0      CUBE: flat seabed patch at the seabed elevation (thin slab just below it), or
 //                 TRIANGLE_LIST following the bottom (profile or grid, its section at the line's
 //                 mid y) when the environment has one; centred on the line's mid y and wider
@@ -55,6 +56,11 @@ struct MarkerOptions {
   bool top_buoy = false;              ///< draw a surface buoy at the top
   bool buoy_cylinder = false;         ///< its shape (vertical cylinder, else sphere)
   double buoy_diameter = 0.0, buoy_height = 0.0;  ///< [m]
+  /// Label "<label_name>: T top = ..." (plain "T top = ..." when empty), raised by label_row text
+  /// lines above the top: lines that share a top (a system's legs at one buoy) set row 0, 1, 2...
+  /// so that their labels stack instead of overlapping.
+  std::string label_name;
+  int label_row = 0;
 };
 
 /// Marker options for a problem: bodies and the top buoy, `scale`.

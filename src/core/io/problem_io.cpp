@@ -6,6 +6,7 @@
 // Unknown keys are errors at every level (typos must not be silently ignored).
 #include "mooring_dynamics/core/io/problem_io.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -489,6 +490,7 @@ Problem parse(const YAML::Node& root, const std::string& base_dir) {
   readTop(top.required("top"), pb.top, body_index, body_names);
   if (presentAndNotNull(top, "solver")) readSolver(top.at("solver"), pb.static_options);
   if (presentAndNotNull(top, "dynamics")) readDynamics(top.at("dynamics"), pb.dynamics, pb.totalLength());
+  pb.dynamics.gnss.track = relativeTo(pb.dynamics.gnss.track, base_dir);
   if (presentAndNotNull(top, "limits")) readLimits(top.at("limits"), pb.limits);
 
   std::string msg = pb.static_options.validate();
@@ -541,15 +543,41 @@ void rejectStrayFlowEntry(const std::string& text) {
   }
 }
 
+/// Counts the YAML documents of `text`, stopping at two: a problem file holds one. Not
+/// YAML::LoadAll: in yaml-cpp 0.7 its loop over documents never ends when the parser returns a
+/// null "document" without consuming a token (yaml-cpp PR 1319; the fourth fuzz timeout, a
+/// quote-comma line), allocating until memory runs out. Events are ignored here: the tree is
+/// built by YAML::Load, which reads the first document only.
+class DocumentCounter : public YAML::EventHandler {
+ public:
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+
+  static int count(const std::string& text) {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentCounter ignore;
+    int documents = 0;
+    while (documents < 2 && parser.HandleNextDocument(ignore)) ++documents;
+    return documents;
+  }
+};
+
 YAML::Node parseYaml(const std::string& yaml_text) {
   YAML::Node root;
   rejectStrayFlowEntry(yaml_text);
   try {
-    const std::vector<YAML::Node> docs = YAML::LoadAll(yaml_text);
-    if (docs.size() > 1)
-      throw ProblemError("the text holds " + std::to_string(docs.size()) +
-                         " YAML documents (separated by ---); a problem file holds exactly one");
-    if (!docs.empty()) root = docs.front();
+    if (DocumentCounter::count(yaml_text) > 1)
+      throw ProblemError("the text holds 2 YAML documents or more (separated by ---, or text that yaml-cpp "
+                         "reads as a further document); a problem file holds exactly one");
+    root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
     std::string msg = "YAML syntax error";
     if (!e.mark.is_null())
@@ -557,6 +585,11 @@ YAML::Node parseYaml(const std::string& yaml_text) {
     throw ProblemError(msg + ": " + e.msg);
   }
   return root;
+}
+
+std::string relativeTo(const std::string& path, const std::string& base_dir) {
+  const std::filesystem::path p(path);
+  return path.empty() || p.is_absolute() || base_dir.empty() ? path : (std::filesystem::path(base_dir) / p).string();
 }
 
 std::string readFileText(const std::string& path) {

@@ -180,7 +180,7 @@ void readTopMotion(const Item& it, TopMotion& tm) {
         throw ProblemError(r.path + " = " + render(r.node) + ": has " + std::to_string(r.node.size()) +
                            " values, the first row " + std::to_string(width) + "; all rows are " +
                            (width == 3 ? mt->columns : mt->columns3d) + lineSuffix(r.mark));
-      double v[4];
+      double v[4] = {0.0, 0.0, 0.0, 0.0};
       for (std::size_t j = 0; j < width; ++j)
         v[j] = readNumber(Item{r.node[j], r.path + "[" + std::to_string(j) + "]", markOf(r.node[j], r.mark)});
       if (!tm.table.empty() && !(v[0] > tm.table.back().t))
@@ -202,12 +202,47 @@ void readTopMotion(const Item& it, TopMotion& tm) {
   }
 }
 
+/// dynamics.gnss: {track, datum: first_fix | {latitude_deg, longitude_deg}, antenna: [x, y, z],
+/// smoothing_time, max_speed, max_horizontal_sigma, max_heading_gap}.
+void readGnss(const Item& it, GnssOptions& g) {
+  const Map m(it, {"track", "datum", "antenna", "smoothing_time", "max_speed", "jump_tolerance",
+                   "max_horizontal_sigma", "max_heading_gap"});
+  g = GnssOptions{};
+  g.enabled = true;
+  if (m.has("track")) g.track = readString(m.at("track"));
+  if (m.has("datum")) {
+    const Item di = m.at("datum");
+    if (di.node.IsScalar()) {
+      const std::string v = readString(di);
+      if (v != "first_fix") di.failQuoted("must be first_fix or {latitude_deg: DEG, longitude_deg: DEG}");
+    } else {
+      const Map dm(di, {"latitude_deg", "longitude_deg"});
+      g.datum_from_first_fix = false;
+      g.datum_latitude_deg = dm.number("latitude_deg", Range::Any);
+      g.datum_longitude_deg = dm.number("longitude_deg", Range::Any);
+      if (std::abs(g.datum_latitude_deg) > 90.0) dm.at("latitude_deg").fail("must be in [-90, 90]");
+      if (std::abs(g.datum_longitude_deg) > 180.0) dm.at("longitude_deg").fail("must be in [-180, 180]");
+    }
+  }
+  if (m.has("antenna")) {
+    const std::vector<Item> xyz = listItems(m.at("antenna"));
+    if (xyz.size() != 3) m.at("antenna").fail("must be [x, y, z] in the body frame [m]");
+    for (int i = 0; i < 3; ++i) g.antenna[i] = readNumber(xyz[static_cast<std::size_t>(i)]);
+  }
+  g.smoothing_time = m.number("smoothing_time", g.smoothing_time, Range::NonNegative);
+  g.max_speed = m.number("max_speed", g.max_speed, Range::Positive);
+  g.jump_tolerance = m.number("jump_tolerance", g.jump_tolerance, Range::NonNegative);
+  g.max_horizontal_sigma = m.number("max_horizontal_sigma", g.max_horizontal_sigma, Range::Positive);
+  g.max_heading_gap = m.number("max_heading_gap", g.max_heading_gap, Range::Positive);
+}
+
 }  // namespace
 
 void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   const Map m(it, {"duration", "dt", "output_interval", "snapshot_interval", "record_s", "scheme", "lambda_inf",
                    "alpha_m", "alpha_k", "gamma", "max_cut_levels", "tolerance", "max_iterations", "relaxation",
-                   "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "threads", "adaptive_mesh", "mesh_weight", "top_motion"});
+                   "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "threads", "adaptive_mesh", "mesh_weight", "top_motion",
+                   "gnss"});
   d.duration = m.number("duration", d.duration, Range::Positive);
   d.dt = m.number("dt", d.dt, Range::Positive);
   if (m.has("output_interval")) {
@@ -311,6 +346,7 @@ void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   d.mesh_weight = m.number("mesh_weight", d.mesh_weight, Range::NonNegative);
 
   if (presentAndNotNull(m, "top_motion")) readTopMotion(m.at("top_motion"), d.top_motion);
+  if (m.has("gnss")) readGnss(m.at("gnss"), d.gnss);
 }
 
 }  // namespace problem_io_detail

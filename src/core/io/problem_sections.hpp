@@ -39,6 +39,9 @@ void readLimits(const Item& it, ResourceLimits& lim);
 YAML::Node parseYaml(const std::string& yaml_text);
 /// A file's text (ProblemError when it cannot be read).
 std::string readFileText(const std::string& path);
+/// A file named in a problem: a relative `path` is relative to `base_dir` (the problem file's
+/// folder; empty: as given). Empty stays empty.
+std::string relativeTo(const std::string& path, const std::string& base_dir);
 
 }  // namespace sections
 }  // namespace core

@@ -207,6 +207,9 @@ SystemProblem parseSystem(const YAML::Node& root, const std::string& base_dir) {
     }
     const Item di = top.at("dynamics");
     readDynamics(di, sp.dynamics, longest);
+    sp.dynamics.gnss.track = relativeTo(sp.dynamics.gnss.track, base_dir);
+    if (sp.dynamics.gnss.enabled && !sp.vessel.present)
+      di.fail("gnss: a ship track moves a vessel; this system has no `vessel:` section");
     if (sp.dynamics.top_motion.type != TopMotion::Type::Hold)
       di.fail("top_motion: a system's free points move by themselves; there is no top motion to give");
     if (!sp.dynamics.record_s.empty()) di.fail("record_s: not used by systems (every line's top tension is written)");

@@ -72,6 +72,7 @@ std::string DynamicOptions::validate() const {
       return bad(k + "record_s[" + std::to_string(i) + "]", record_s[i], "must be >= 0");
   std::string e = scheme.validate();
   if (!e.empty()) return e;
+  if (gnss.enabled && !(e = gnss.validate()).empty()) return e;
   if (max_cut_levels < 0 || max_cut_levels > 8)
     return k + "max_cut_levels = " + std::to_string(max_cut_levels) + ": must be in [0, 8]";
   if (!(std::isfinite(tolerance) && tolerance > 0.0)) return bad(k + "tolerance", tolerance, "must be > 0");

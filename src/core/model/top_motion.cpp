@@ -174,10 +174,14 @@ std::string planarTopMotionError(const TopMotion& m) {
 
 std::string topMotionStartError(const TopMotion& m, double x0, double y0, double z0, double tolerance) {
   if (m.type != TopMotion::Type::PositionTable || m.table.empty()) return {};
-  const TopMotion::Row& r = m.table.front();
+  // The row at the start: the last at t <= 0 (rows before it only set the velocity at t = 0, as a
+  // tow's run-up does), else the first.
+  std::size_t i = 0;
+  while (i + 1 < m.table.size() && m.table[i + 1].t <= 0.0) ++i;
+  const TopMotion::Row& r = m.table[i];
   const double dx = r.x - x0, dy = r.y - y0, dz = r.z - z0;
   if (std::sqrt(dx * dx + dy * dy + dz * dz) <= tolerance) return {};
-  return "dynamics.top_motion.table[0] = (" + fmt(r.x) + ", " + fmt(r.y) + ", " + fmt(r.z) +
+  return "dynamics.top_motion.table[" + std::to_string(i) + "] = (" + fmt(r.x) + ", " + fmt(r.y) + ", " + fmt(r.z) +
          "): must start at the static top position (" + fmt(x0) + ", " + fmt(y0) + ", " + fmt(z0) +
          ") within " + fmt(tolerance) + " m";
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mooring_dynamics/core/model/gnss.hpp"
 #include "mooring_dynamics/core/model/ship_track.hpp"
 #include "mooring_dynamics/core/model/time_integration.hpp"
 
@@ -87,6 +88,8 @@ struct DynamicOptions {
   double mesh_weight = 20.0;     ///< c_w of eq. 15
 
   TopMotion top_motion;
+  /// A real ship track (`dynamics.gnss`): GNSS fixes and headings drive the top or the vessel.
+  GnssOptions gnss;
 
   std::string validate() const;
 };
