@@ -68,6 +68,10 @@ int runNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
     anchors = publishAnchorFrames(pnh, [&](const std::string& world, const std::string& prefix) {
       return anchorFrames(system_node->system(), world, prefix, now);
     });
+  if (system_dynamic_node)
+    anchors = publishAnchorFrames(pnh, [&](const std::string& world, const std::string& prefix) {
+      return anchorFrames(system_dynamic_node->system(), world, prefix, now);
+    });
   if (static_node) static_node->start();
   if (system_node) system_node->start();
   ros::spin();

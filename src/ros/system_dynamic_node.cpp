@@ -270,6 +270,8 @@ void SystemDynamicNode::publish(const ros::Time& stamp) {
     mo.tension_min = tmin;
     mo.tension_max = tmax;
     mo.sea_surface = i == 0;
+    mo.label_name = system_.lines[i].name;  // legs that meet at one point stack their labels there
+    mo.label_row = static_cast<int>(i);
     visualization_msgs::MarkerArray m = makeMarkers(states[i], system_.environment, mo);
     for (auto& mk : m.markers) {
       if (i > 0 && mk.ns == "scale") continue;

@@ -15,7 +15,8 @@
 //   ~problem_file, ~frame_id, ~marker_scale, ~dt, ~threads, ~loop_back, ~max_gap,
 //   ~clock_timeout, ~diagnostics_period, ~min_real_time_factor
 // Publications: ~lines/<line>/cable_state, ~points/<point>/wrench, ~points/<point>/position (free
-// points), ~markers (when subscribed), /diagnostics. Services: ~reset (std_srvs/Trigger),
+// points), ~markers (when subscribed), /diagnostics; the anchors and fixed points on /tf_static
+// (runNode, ~publish_anchor_frames). Services: ~reset (std_srvs/Trigger),
 // ~solve_static (mooring_dynamics/SystemStatics).
 #pragma once
 
@@ -48,6 +49,7 @@ class SystemDynamicNode {
   void onTime(const ros::Time& now);
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSolveStatic(SystemStatics::Request& req, SystemStatics::Response& res);
+  const core::SystemProblem& system() const { return system_; }
 
  private:
   void onClock(const rosgraph_msgs::Clock::ConstPtr& msg);

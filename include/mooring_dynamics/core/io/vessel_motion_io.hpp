@@ -19,6 +19,8 @@ namespace mooring_dynamics {
 namespace core {
 
 struct PoseSample {
+  PoseSample() = default;
+  PoseSample(double time, const RigidPose& p) : t(time), pose(p) {}  ///< a pose-only sample
   double t = 0.0;  ///< [s]
   RigidPose pose;  ///< world frame
   bool has_twist = false;
