@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "cli_common.hpp"
 #include "mooring_dynamics/core/io/problem_io.hpp"
@@ -211,14 +212,26 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   sample();
   bool ok = true;
   std::string why;
+  // A group of lines that failed and restarted alone from statics (SystemDynamics) is an event:
+  // the run goes on (as the node's), but does not count as completed as given.
+  std::vector<std::string> events;
+  auto collect = [&]() {
+    for (const core::LineGroupRestart& g : sim->lastRestarts()) {
+      std::string names;
+      for (std::size_t i : g.lines) names += (names.empty() ? "" : ", ") + s.lines[i].name;
+      events.push_back("t = " + fmtNum("%g", g.time) + " s: " + g.reason + "; restarted from statics: " + names);
+    }
+  };
   const long samples = static_cast<long>(std::floor(s.dynamics.duration / dout + 1e-9));
   for (long k = 1; k <= samples && ok; ++k) {
     ok = sim->advanceTo(k * dout, &why);
+    collect();
     if (ok) sample();
   }
   // The end time when the duration is not a whole number of samples (as a single line's run).
   if (ok && s.dynamics.duration - static_cast<double>(samples) * dout > 1e-9 * dout) {
     ok = sim->advanceTo(s.dynamics.duration, &why);
+    collect();
     if (ok) sample();
   }
   // Never "completed" short of the end time.
@@ -228,8 +241,10 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
           fmtNum("%g", s.dynamics.duration) + " s";
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  out << s.name << ": system dynamic run " << (ok ? "completed" : "STOPPED") << "\n";
+  out << s.name << ": system dynamic run "
+      << (!ok ? "STOPPED" : events.empty() ? "completed" : "completed with line restarts") << "\n";
   if (!ok) out << "  stopped        " << why << "\n";
+  for (const auto& e : events) out << "  event          " << e << "\n";
   out << "  time           " << fmtNum("%g", sim->time()) << " of " << fmtNum("%g", s.dynamics.duration) << " s, dt "
       << fmtNum("%g", s.dynamics.dt) << " s, " << rows.size() << " samples\n";
   for (std::size_t i = 0; i < s.lines.size(); ++i) {
@@ -265,7 +280,7 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
       return kExitIo;
     out << "wrote " << ts.string() << "\n";
   }
-  return ok ? kExitOk : kExitNotConverged;
+  return ok && events.empty() ? kExitOk : kExitNotConverged;
 }
 
 }  // namespace detail

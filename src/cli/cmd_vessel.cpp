@@ -229,7 +229,12 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
       return kExitBadInput;
     }
     const long n = static_cast<long>(std::floor(s.dynamics.duration / s.dynamics.dt + 1e-9));
-    for (long k = 0; k <= n; ++k) samples.push_back({static_cast<double>(k) * s.dynamics.dt, s.vessel.pose});
+    for (long k = 0; k <= n; ++k) {
+      core::PoseSample p;
+      p.t = static_cast<double>(k) * s.dynamics.dt;
+      p.pose = s.vessel.pose;
+      samples.push_back(p);
+    }
   }
   const double t_first = samples.front().t;
   const double t_last = s.dynamics.duration > 0.0 ? t_first + s.dynamics.duration : samples.back().t;
@@ -251,9 +256,11 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
   bool ok = true;
   for (const core::PoseSample& p : samples) {
     if (p.t > t_last + 1e-9) break;
-    const core::VesselLockstep::Result r = run->onSample(p.t, p.pose);
+    const core::VesselLockstep::Result r = run->onSample(p.t, p.pose, p.has_twist ? &p.twist : nullptr);
     if (!r.message.empty()) events.push_back("t = " + fmtNum("%g", p.t) + " s: " + toString(r.outcome) + ": " + r.message);
-    if (r.outcome == core::VesselLockstep::Outcome::RecoveredFailure) ok = false;
+    if (r.outcome == core::VesselLockstep::Outcome::RecoveredFailure ||
+        r.outcome == core::VesselLockstep::Outcome::LinesRestarted)
+      ok = false;
     if (!r.publish) continue;
     const core::VesselWrench w = run->wrench();
     std::vector<double> row{p.t};

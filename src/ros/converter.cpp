@@ -366,5 +366,33 @@ void toVesselStaticsResponse(const core::SystemProblem& system, const core::Vess
   res.message = os.str();
 }
 
+void toSystemStaticsResponse(const core::SystemProblem& system, const core::SystemStaticResult& r,
+                             SystemStatics::Response& res) {
+  res = SystemStatics::Response();
+  res.success = r.summary.converged;
+  res.iterations = static_cast<uint32_t>(std::max(0, r.summary.iterations));
+  res.message = (r.summary.converged ? "converged: " : "did not converge: ") + r.summary.message;
+  for (const core::SystemPointResult& p : r.points) {
+    res.point_names.push_back(p.name);
+    geometry_msgs::Point x;
+    x.x = p.x;
+    x.y = p.y;
+    x.z = p.z;
+    res.point_positions.push_back(x);
+    geometry_msgs::Vector3 f;
+    f.x = p.fx;
+    f.y = p.fy;
+    f.z = p.fz;
+    res.point_pull.push_back(f);
+  }
+  for (std::size_t i = 0; i < r.lines.size(); ++i) {
+    res.line_names.push_back(i < system.lines.size() ? system.lines[i].name : "");
+    res.top_tension.push_back(r.lines[i].topTension());
+    double tmin = r.lines[i].nodes.empty() ? 0.0 : r.lines[i].nodes.front().tension;
+    for (const auto& n : r.lines[i].nodes) tmin = std::min(tmin, n.tension);
+    res.min_tension.push_back(tmin);
+  }
+}
+
 }  // namespace ros_bridge
 }  // namespace mooring_dynamics

@@ -18,6 +18,7 @@
 #include <ros/ros.h>
 
 #include "mooring_dynamics/CableState.h"
+#include "mooring_dynamics/ros/vessel_monitor.hpp"
 
 namespace {
 
@@ -59,7 +60,9 @@ class Monitor {
   }
   void onDiag(const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
     for (const auto& s : m->status) {
-      if (s.name.find(node_ + " lockstep") == std::string::npos) continue;
+      // The run's status: "<node> lockstep", "<node> vessel lockstep" or "<node> system lockstep"
+      // (not the per-line statuses of the vessel and system nodes).
+      if (!mooring_dynamics::ros_bridge::isRunStatusName(s.name, node_)) continue;
       static const char* levels[] = {"OK", "WARN", "ERROR", "STALE"};
       level_ = s.level >= 0 && s.level <= 3 ? levels[s.level] : "?";
       message_ = s.message;

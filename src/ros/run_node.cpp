@@ -8,6 +8,7 @@
 #include "mooring_dynamics/ros/anchor_frames.hpp"
 #include "mooring_dynamics/ros/lockstep_node.hpp"
 #include "mooring_dynamics/ros/static_node.hpp"
+#include "mooring_dynamics/ros/system_dynamic_node.hpp"
 #include "mooring_dynamics/ros/system_node.hpp"
 #include "mooring_dynamics/ros/vessel_node.hpp"
 
@@ -21,13 +22,15 @@ int runNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
   std::unique_ptr<LockstepNode> lockstep_node;
   std::unique_ptr<SystemStaticNode> system_node;
   std::unique_ptr<VesselNode> vessel_node;
+  std::unique_ptr<SystemDynamicNode> system_dynamic_node;
   try {
     if (paramsNameSystemFile(pnh)) {  // several lines joined at points (a moored vessel among them)
       if (mode == "dynamic" && paramsNameVesselFile(pnh)) {
-        vessel_node = std::make_unique<VesselNode>(nh, pnh);
+        vessel_node = std::make_unique<VesselNode>(nh, pnh);  // driven by the vessel's poses
+      } else if (mode == "dynamic") {
+        system_dynamic_node = std::make_unique<SystemDynamicNode>(nh, pnh);  // free points, on ROS time
       } else if (mode != "static") {
-        ROS_FATAL("mooring_dynamics: parameter %s = \"%s\": a system of lines without a moored vessel (a `vessel:` "
-                  "section with lines on it) runs in static mode only so far",
+        ROS_FATAL("mooring_dynamics: parameter %s = \"%s\": must be \"static\" or \"dynamic\"",
                   pnh.resolveName("mode").c_str(), mode.c_str());
         ros::shutdown();
         return 1;
@@ -64,6 +67,10 @@ int runNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
   if (system_node)
     anchors = publishAnchorFrames(pnh, [&](const std::string& world, const std::string& prefix) {
       return anchorFrames(system_node->system(), world, prefix, now);
+    });
+  if (system_dynamic_node)
+    anchors = publishAnchorFrames(pnh, [&](const std::string& world, const std::string& prefix) {
+      return anchorFrames(system_dynamic_node->system(), world, prefix, now);
     });
   if (static_node) static_node->start();
   if (system_node) system_node->start();

@@ -36,6 +36,7 @@ SystemStaticNode::SystemStaticNode(const ros::NodeHandle& nh, const ros::NodeHan
   for (const auto& p : system_.points)
     point_pubs_.push_back(pnh_.advertise<geometry_msgs::WrenchStamped>("points/" + p.name + "/wrench", 1, true));
   marker_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
+  solve_srv_ = pnh_.advertiseService("solve_static", &SystemStaticNode::onSolveStatic, this);
   ROS_INFO("mooring_dynamics: system '%s' from %s: %zu lines, %zu points", system_.name.c_str(), file.c_str(),
            system_.lines.size(), system_.points.size());
 }
@@ -90,6 +91,19 @@ bool SystemStaticNode::start() {
     point_pubs_[k].publish(w);
   }
   ROS_INFO("mooring_dynamics: system statics: %s", r.summary.message.c_str());
+  return true;
+}
+
+bool SystemStaticNode::onSolveStatic(SystemStatics::Request& req, SystemStatics::Response& res) {
+  try {
+    toSystemStaticsResponse(system_, core::solveSystemStatic(system_), res);
+  } catch (const std::exception& e) {
+    res = SystemStatics::Response();
+    res.success = false;
+    res.message = std::string("system statics: ") + e.what();
+  }
+  if (req.reinitialise) res.message += " (reinitialise ignored: static mode)";
+  ROS_INFO("mooring_dynamics: ~solve_static: %s", res.message.c_str());
   return true;
 }
 

@@ -75,6 +75,22 @@ void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, doub
       last_event_ = "dropped: " + r.message;
       break;
     case O::Advanced: window_.sim += advanced; break;
+    case O::LinesRestarted: {
+      // Some lines (a group) failed and restarted alone from statics; the others went on.
+      window_.sim += advanced;
+      ++window_.failures;
+      std::string names;
+      for (std::size_t i : r.failed_lines) {
+        if (i >= names_.size()) continue;
+        names += (names.empty() ? "" : ", ") + names_[i];
+        ++line_failures_window_[i];
+        ++line_failures_total_[i];
+        line_last_failure_[i] = r.message;
+      }
+      last_failure_ = r.message;
+      last_event_ = "line(s) " + names + " failed and restarted alone from statics; the others went on: " + r.message;
+      break;
+    }
     case O::Started: last_event_ = "started" + (r.message.empty() ? std::string() : ": " + r.message); break;
     case O::Reinitialised:
       ++window_.restarts;
@@ -90,7 +106,7 @@ void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, doub
       if (i >= 0) {
         ++line_failures_window_[static_cast<std::size_t>(i)];
         ++line_failures_total_[static_cast<std::size_t>(i)];
-        line_last_failure_[static_cast<std::size_t>(i)] = r.message;
+        line_last_failure_[static_cast<std::size_t>(i)] = "every line restarted from statics at the sample's pose: " + r.message;
       }
       break;
     }
@@ -113,7 +129,7 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
 
   Status s;
   std::vector<std::string> errors, warnings;
-  if (w.failures > 0) errors.push_back(std::to_string(w.failures) + " line failure(s), restarted from statics: " + last_failure_);
+  if (w.failures > 0) errors.push_back(std::to_string(w.failures) + " line failure(s): " + last_event_);
   const double quiet = wall_now - last_motion_wall_;
   if (quiet > options_.motion_timeout)
     warnings.push_back(ever_received_ ? "no motion for " + fmt(quiet, "%.1f") + " s (last good state kept)"
@@ -151,7 +167,7 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
     l.line = names_[i];
     const bool failed = line_failures_window_[i] > 0;
     l.level = failed ? ERROR : OK;
-    l.message = failed ? "failed (" + line_last_failure_[i] + "); every line restarted from statics at the sample's pose"
+    l.message = failed ? "failed: " + line_last_failure_[i]
                        : have_state_ ? "top tension " + fmt(top_tension_[i], "%.1f") + " N" : "waiting for motion";
     kv(l, "top tension [N]", have_state_ ? fmt(top_tension_[i], "%.6g") : "-");
     kv(l, "max top tension [N]", have_state_ ? fmt(max_top_tension_[i], "%.6g") : "-");
@@ -163,6 +179,13 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
     out.push_back(l);
   }
   return out;
+}
+
+bool isRunStatusName(const std::string& status_name, const std::string& node) {
+  const std::string head = "mooring_dynamics: " + node + " ";
+  if (status_name.compare(0, head.size(), head) != 0) return false;
+  const std::string rest = status_name.substr(head.size());
+  return rest == "lockstep" || rest == "vessel lockstep" || rest == "system lockstep";
 }
 
 }  // namespace ros_bridge

@@ -68,6 +68,7 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     throw std::runtime_error("parameter " + pnh_.resolveName("motion_source") + " = \"" + motion_source_ +
                              "\": must be \"pose\" (~vessel_pose, geometry_msgs/PoseStamped), \"odometry\" "
                              "(~vessel_odom, nav_msgs/Odometry) or \"tf\" (~frame_id <- ~vessel_frame)");
+  pnh_.param("use_twist", use_twist_, true);
   const double poll_rate = doubleParam(pnh_, "tf_poll_rate", 20.0, [](double v) { return v > 0.0; }, "must be > 0 [Hz]");
   tf_timeout_ = doubleParam(pnh_, "tf_timeout", 0.1, [](double v) { return v >= 0.0; }, "must be >= 0 [s]");
   const int threads = intParam(pnh_, "threads", core::ThreadPool::hardwareThreads(), 1, "must be >= 1");
@@ -113,6 +114,23 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
                              std::string(e.what()));
   }
   const double ms = (ros::WallTime::now() - w0).toSec() * 1000.0;
+  // TEST HOOK (failure injection, tests only; docs/ros_interface.md): ~test_fail_line names a line
+  // whose step ending at solver time ~test_fail_time [s] counts as failed.
+  std::string fail_line;
+  pnh_.param<std::string>("test_fail_line", fail_line, "");
+  if (!fail_line.empty()) {
+    std::size_t idx = system_.lines.size();
+    for (std::size_t i = 0; i < system_.lines.size(); ++i)
+      if (system_.lines[i].name == fail_line) idx = i;
+    if (idx == system_.lines.size())
+      throw std::runtime_error("parameter " + pnh_.resolveName("test_fail_line") + " = \"" + fail_line +
+                               "\": no line of that name");
+    const double at = doubleParam(pnh_, "test_fail_time", 1.0, [](double v) { return v > 0.0; }, "must be > 0 [s]");
+    lockstep_->setFailureInjection([idx, at](std::size_t line, double t1) {
+      return line == idx && std::abs(t1 - at) < 1e-9;
+    });
+    ROS_WARN("mooring_dynamics: TEST HOOK: line %s fails at solver time %g s (~test_fail_line)", fail_line.c_str(), at);
+  }
 
   std::vector<std::string> names;
   for (std::size_t i = 0; i < system_.lines.size(); ++i) {
@@ -150,7 +168,8 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     input = motion_sub_.getTopic();
   } else if (motion_source_ == "odometry") {
     motion_sub_ = pnh_.subscribe("vessel_odom", 100, &VesselNode::onOdometry, this);
-    input = motion_sub_.getTopic() + " (pose; velocities from the pose sequence)";
+    input = motion_sub_.getTopic() + (use_twist_ ? " (pose and twist: Hermite path through both)"
+                                                  : " (pose only, ~use_twist false: velocities from the pose sequence)");
   } else {
     tf_timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / poll_rate), &VesselNode::pollTf, this);
     input = "tf " + frame_id_ + " <- " + vessel_frame_ + " polled at " + formatNumber(poll_rate) + " Hz";
@@ -169,9 +188,22 @@ void VesselNode::onPose(const geometry_msgs::PoseStamped::ConstPtr& msg) {
 }
 
 void VesselNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
-  // The pose only: the velocities come from the pose sequence (core::RigidSegment), as in
-  // cable_sim dynamic on a motion table, so that both give the same bits.
-  onMotion(msg->header.stamp, msg->header.frame_id, msg->pose.pose, "pose.pose");
+  // REP 105: the pose is child_frame_id's in header.frame_id, the twist in child_frame_id's axes:
+  // the vessel's body frame. VesselLockstep rotates it into the world with the sample's
+  // orientation (v = R v_body, omega = R omega_body), as cable_sim dynamic does with a motion
+  // table's velocity columns, so that both give the same bits. (A pose in another frame than
+  // ~frame_id is transformed; the body-frame twist needs no transform as long as that frame does
+  // not move against ~frame_id.) With ~use_twist false: the pose only, velocities from the poses.
+  if (!use_twist_) {
+    onMotion(msg->header.stamp, msg->header.frame_id, msg->pose.pose, "pose.pose");
+    return;
+  }
+  core::BodyTwist tw;
+  const auto& l = msg->twist.twist.linear;
+  const auto& a = msg->twist.twist.angular;
+  tw.linear = Eigen::Vector3d(l.x, l.y, l.z);
+  tw.angular = Eigen::Vector3d(a.x, a.y, a.z);
+  onMotion(msg->header.stamp, msg->header.frame_id, msg->pose.pose, "pose.pose", &tw);
 }
 
 void VesselNode::pollTf(const ros::WallTimerEvent&) {
@@ -199,7 +231,7 @@ void VesselNode::reject(const std::string& message) {
 }
 
 void VesselNode::onMotion(const ros::Time& stamp, const std::string& frame, const geometry_msgs::Pose& pose_in,
-                          const std::string& field) {
+                          const std::string& field, const core::BodyTwist* twist) {
   monitor_->onMotionReceived(wallNow());
   if (stamp.isZero()) {
     reject("header.stamp = 0: lockstep mode needs stamped poses");
@@ -229,11 +261,15 @@ void VesselNode::onMotion(const ros::Time& stamp, const std::string& frame, cons
   const double t = have_epoch_ ? (stamp - epoch_).toSec() : 0.0;
   const double before = lockstep_->solverTime();
   const ros::WallTime w0 = ros::WallTime::now();
-  core::VesselLockstep::Result r = lockstep_->onSample(t, rp);
+  core::VesselLockstep::Result r = lockstep_->onSample(t, rp, twist);
   const double spent = (ros::WallTime::now() - w0).toSec();
   if (r.outcome == core::VesselLockstep::Outcome::Dropped && r.message.rfind("pose", 0) == 0)
     r.message = field + r.message.substr(4);  // name the message field
-  handle(r, stamp, spent, r.outcome == core::VesselLockstep::Outcome::Advanced ? lockstep_->solverTime() - before : 0.0);
+  else if (r.outcome == core::VesselLockstep::Outcome::Dropped && r.message.rfind("twist", 0) == 0)
+    r.message = "twist.twist" + r.message.substr(5);  // nav_msgs/Odometry's field
+  const bool advanced = r.outcome == core::VesselLockstep::Outcome::Advanced ||
+                        r.outcome == core::VesselLockstep::Outcome::LinesRestarted;
+  handle(r, stamp, spent, advanced ? lockstep_->solverTime() - before : 0.0);
 }
 
 void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& stamp, double wall_spent,
@@ -257,6 +293,7 @@ void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& 
       ROS_WARN("mooring_dynamics: stamp %.6f: restarted from statics: %s", stamp.toSec(), r.message.c_str());
       break;
     case O::RecoveredFailure:
+    case O::LinesRestarted:
       ROS_ERROR("mooring_dynamics: stamp %.6f: %s", stamp.toSec(), monitor_->lastEvent().c_str());
       break;
     case O::Advanced:

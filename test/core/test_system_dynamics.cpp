@@ -253,3 +253,129 @@ TEST(SystemDynamics, MovingVesselSameBitsOnOneAndThreeThreadsAndTheMomentIsTheHa
   EXPECT_LT(one.back().force_body.x(), 0.0);
   EXPECT_LT(one.back().moment_body.z(), 0.0);
 }
+
+// --- Failures: one group restarts alone from statics, the others go on bit for bit -------------
+
+namespace {
+/// Every node's position and tension of line i: compared bit for bit.
+std::vector<double> lineBits(const SystemDynamics& d, std::size_t i) {
+  std::vector<double> v;
+  const StaticResult r = d.line(i);
+  for (const auto& n : r.nodes) v.insert(v.end(), {n.x, n.y, n.z, n.tension});
+  v.insert(v.end(), {r.top_force_x, r.top_force_y, r.top_force_z});
+  return v;
+}
+bool at(double t1, double t) { return std::abs(t1 - t) < 1e-9; }
+
+/// Two three-leg buoys 500 m apart sharing the anchor between them: one connected system (through
+/// the shared anchor), two independent groups (each buoy with its legs). A 2 kN pull to the east
+/// on buoy A and 3 kN to the north on buoy B set both in motion.
+SystemProblem twoBuoys() {
+  SystemProblem s = threeLeg();
+  SystemPoint b = s.points[0];
+  b.name = "buoy_b";
+  b.x = 500.0;
+  s.points.push_back(b);  // 4
+  constexpr double kTwoPi = 6.283185307179586;
+  for (int k = 1; k < 3; ++k) {
+    const double a = kTwoPi * k / 3.0 + kPi;
+    s.points.push_back(point("anchor_b" + std::to_string(k), SystemPoint::Type::Anchor, 500.0 + 250.0 * std::cos(a),
+                             250.0 * std::sin(a), -100.0));
+  }
+  s.lines.push_back(line("leg_b0", 1, 4, 300.0, 10.0));  // from the shared anchor (250, 0, -100)
+  s.lines.push_back(line("leg_b1", 5, 4, 300.0, 10.0));
+  s.lines.push_back(line("leg_b2", 6, 4, 300.0, 10.0));
+  return s;
+}
+}  // namespace
+
+TEST(SystemDynamics, LineGroupsAreTheLinesJoinedThroughFreePoints) {
+  DynamicOptions o;
+  o.dt = 0.5;
+  SystemDynamics two(twoBuoys(), o);
+  ASSERT_EQ(two.lineGroups().size(), 2u);
+  EXPECT_EQ(two.lineGroups()[0], (std::vector<std::size_t>{0, 1, 2}));
+  EXPECT_EQ(two.lineGroups()[1], (std::vector<std::size_t>{3, 4, 5}));
+  SystemDynamics vessel(testing_util::fourLegVessel(10.0), o);
+  EXPECT_EQ(vessel.lineGroups().size(), 4u) << "vessel legs touching no free point: one group each";
+  SystemDynamics branched(loadSystemFromFile("config/branched_array.yaml"), o);
+  EXPECT_EQ(branched.lineGroups().size(), 1u) << "every line of the branched array meets the junction float";
+}
+
+// A vessel leg that fails (injected at t = 2 s) restarts alone from the statics at the vessel's
+// pose at 2 s; the three others go on with exactly the bits of a run without the failure.
+TEST(SystemDynamics, FailedVesselLegRestartsAloneTheOthersKeepTheirBits) {
+  const SystemProblem s = testing_util::fourLegVessel(10.0);
+  DynamicOptions o;
+  o.dt = 0.25;
+  const RigidPose a = s.vessel.pose, b = RigidPose::fromRollPitchYaw({3.0, 0.0, 0.0}, 0.0, 0.0, 3.0 * kDegree);
+  const RigidSegment seg(0.0, a, 10.0, b);
+  SystemDynamics clean(s, o), failing(s, o);
+  clean.setVesselMotion([seg](double t) { return seg.at(t); });
+  failing.setVesselMotion([seg](double t) { return seg.at(t); });
+  failing.setFailureInjection([](std::size_t line, double t1) { return line == 1 && at(t1, 2.0); });
+  for (int k = 1; k <= 16; ++k) {
+    const double t = 0.5 * k;
+    std::string why;
+    ASSERT_TRUE(clean.advanceTo(t, &why)) << why;
+    ASSERT_TRUE(failing.advanceTo(t, &why)) << why;
+    if (at(t, 2.0)) {
+      ASSERT_EQ(failing.lastRestarts().size(), 1u);
+      EXPECT_EQ(failing.lastRestarts()[0].lines, std::vector<std::size_t>{1});
+      EXPECT_DOUBLE_EQ(failing.lastRestarts()[0].time, 2.0);
+      EXPECT_NE(failing.lastRestarts()[0].reason.find("line leg1: failure injected (test hook)"), std::string::npos)
+          << failing.lastRestarts()[0].reason;
+      // Restarted from the statics at the pose at 2 s: the vessel statics there (solved
+      // independently) give its top tension, to the static solver's tolerance.
+      const VesselStaticResult st = solveVesselStatic(s, seg.at(2.0).pose);
+      EXPECT_NEAR(failing.line(1).topTension(), st.system.lines[1].topTension(),
+                  1e-6 * st.system.lines[1].topTension());
+    } else {
+      EXPECT_TRUE(failing.lastRestarts().empty()) << "t " << t;
+    }
+    for (std::size_t i : {0u, 2u, 3u}) EXPECT_EQ(lineBits(failing, i), lineBits(clean, i)) << "line " << i << " t " << t;
+    if (t > 2.0) {
+      EXPECT_NE(lineBits(failing, 1), lineBits(clean, 1)) << "the restarted leg is on its own path";
+    }
+  }
+}
+
+// A buoy's leg that fails restarts with the buoy and its other legs (they share the buoy's force
+// balance); the other buoy and its legs go on with exactly the bits of a run without the failure.
+TEST(SystemDynamics, FailedBuoyLegRestartsItsGroupTheOtherGroupKeepsItsBits) {
+  const SystemProblem s = twoBuoys();
+  DynamicOptions o;
+  o.dt = 0.5;
+  auto pulls = [](SystemDynamics& d) {
+    d.setPointForce(0, [](double) { return std::array<double, 3>{2000.0, 0.0, 0.0}; });
+    d.setPointForce(4, [](double) { return std::array<double, 3>{0.0, 3000.0, 0.0}; });
+  };
+  SystemDynamics clean(s, o), failing(s, o);
+  pulls(clean);
+  pulls(failing);
+  failing.setFailureInjection([](std::size_t line, double t1) { return line == 4 && at(t1, 3.0); });
+  for (int k = 1; k <= 12; ++k) {
+    const double t = 0.5 * k;
+    std::string why;
+    ASSERT_TRUE(clean.advanceTo(t, &why)) << why;
+    ASSERT_TRUE(failing.advanceTo(t, &why)) << why;
+    if (at(t, 3.0)) {
+      ASSERT_EQ(failing.lastRestarts().size(), 1u);
+      EXPECT_EQ(failing.lastRestarts()[0].lines, (std::vector<std::size_t>{3, 4, 5}));
+      EXPECT_NE(failing.lastRestarts()[0].reason.find("line leg_b1"), std::string::npos);
+      // Buoy B back at its static position (the file's, no pull in statics), at rest.
+      const auto p = failing.points()[4];
+      const auto p0 = failing.initialStatic().points[4];
+      EXPECT_NEAR(p.x, p0.x, kFixedPointTol);
+      EXPECT_NEAR(p.y, p0.y, kFixedPointTol);
+      EXPECT_EQ(failing.pointVelocity(4), (std::array<double, 3>{0.0, 0.0, 0.0}));
+    }
+    for (std::size_t i : {0u, 1u, 2u}) EXPECT_EQ(lineBits(failing, i), lineBits(clean, i)) << "line " << i << " t " << t;
+    const auto pa = failing.points()[0], ca = clean.points()[0];
+    EXPECT_EQ(pa.x, ca.x);
+    EXPECT_EQ(pa.y, ca.y);
+    EXPECT_EQ(pa.z, ca.z);
+  }
+  // Buoy A really moved (the comparison is not between two resting states).
+  EXPECT_GT(clean.points()[0].x - clean.initialStatic().points[0].x, 0.01);
+}

@@ -94,3 +94,37 @@ TEST(VesselLockstep, OptionsNameTheField) {
   lo.loop_back = -1;
   EXPECT_NE(lo.validate().find("loop_back"), std::string::npos);
 }
+
+// One line fails (injected at solver time 1.0 s): the sample is answered (LinesRestarted, the
+// line named), that line alone restarts from statics, and the other lines' states and the
+// wrench's other shares go on bit for bit as in a run without the failure.
+TEST(VesselLockstep, AFailedLineRestartsAloneAndIsNamed) {
+  VesselLockstep clean(fourLegVessel(10.0), options()), failing(fourLegVessel(10.0), options());
+  failing.setFailureInjection([](std::size_t line, double t1) { return line == 2 && std::abs(t1 - 1.0) < 1e-9; });
+  bool seen = false;
+  for (int i = 0; i <= 12; ++i) {
+    const double t = 100.0 + 0.25 * i;  // any epoch: solver time = t - 100
+    const RigidPose p = surged(0.5 * std::sin(0.6 * (t - 100.0)), 2.0 * std::sin(0.3 * (t - 100.0)));
+    const VesselLockstep::Result rc = clean.onSample(t, p), rf = failing.onSample(t, p);
+    ASSERT_TRUE(rc.publish);
+    ASSERT_TRUE(rf.publish);
+    if (i == 4) {
+      seen = true;
+      EXPECT_EQ(rf.outcome, VesselLockstep::Outcome::LinesRestarted) << rf.message;
+      EXPECT_EQ(rf.failed_lines, std::vector<std::size_t>{2});
+      EXPECT_NE(rf.message.find("line leg2: failure injected (test hook)"), std::string::npos) << rf.message;
+      EXPECT_NE(rf.message.find("the other lines go on"), std::string::npos) << rf.message;
+    } else {
+      EXPECT_EQ(rf.outcome, i == 0 ? VesselLockstep::Outcome::Started : VesselLockstep::Outcome::Advanced) << i;
+    }
+    const std::vector<StaticResult> lc = clean.lines(), lf = failing.lines();
+    for (std::size_t k : {0u, 1u, 3u}) {
+      ASSERT_EQ(lc[k].nodes.size(), lf[k].nodes.size());
+      for (std::size_t n = 0; n < lc[k].nodes.size(); ++n) {
+        EXPECT_EQ(lc[k].nodes[n].x, lf[k].nodes[n].x) << "line " << k << " sample " << i;
+        EXPECT_EQ(lc[k].nodes[n].tension, lf[k].nodes[n].tension) << "line " << k << " sample " << i;
+      }
+    }
+  }
+  EXPECT_TRUE(seen);
+}

@@ -36,3 +36,19 @@ TEST(VesselMotionTable, ErrorsNameTheRowColumnAndValue) {
   EXPECT_NE(error("0,1,2,3,0,0,0,nan\n").find("not a finite number"), std::string::npos);
   EXPECT_NE(error("# nothing\n").find("no rows"), std::string::npos);
 }
+
+TEST(VesselMotionTable, VelocityColumnsAreTheBodyTwist) {
+  // 14 columns: the body-frame twist (vx, vy, vz, wx, wy, wz) as nav_msgs/Odometry's.
+  const auto rows = parseVesselMotionTable(
+      "t,x,y,z,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz\n0,1,2,3,0,0,0,1,0.5,-0.25,0.125,0.01,-0.02,0.03\n", "m.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_TRUE(rows[0].has_twist);
+  EXPECT_EQ(rows[0].twist.linear, Eigen::Vector3d(0.5, -0.25, 0.125));
+  EXPECT_EQ(rows[0].twist.angular, Eigen::Vector3d(0.01, -0.02, 0.03));
+  EXPECT_FALSE(parseVesselMotionTable("0,1,2,3,0,0,0,1\n", "m.csv")[0].has_twist);
+  // Widths: 8 or 14, the same in every row; the column of a bad value is named.
+  EXPECT_NE(error("0,1,2,3,0,0,0,1,0.5,0,0\n").find("11 values, expected 8"), std::string::npos);
+  EXPECT_NE(error("0,1,2,3,0,0,0,1\n0.1,1,2,3,0,0,0,1,0,0,0,0,0,0\n").find("m.csv:2: 14 values, the first row 8"),
+            std::string::npos);
+  EXPECT_NE(error("0,1,2,3,0,0,0,1,0,0,0,0,x,0\n").find("column wy = \"x\""), std::string::npos);
+}

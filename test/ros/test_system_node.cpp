@@ -15,6 +15,9 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "mooring_dynamics/CableState.h"
+#include "mooring_dynamics/SystemStatics.h"
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/system_statics.hpp"
 
 namespace {
 
@@ -123,6 +126,30 @@ TEST(SystemNode, AnchorsOnTfStatic) {
     EXPECT_DOUBLE_EQ(t.transform.translation.z, kv.second[2]);
     EXPECT_DOUBLE_EQ(t.transform.rotation.w, 1.0);
   }
+}
+
+// ~solve_static (SystemStatics) in static mode: the core's system statics, bit for bit, every
+// point and line in the file's order; the buoy's pull is what its buoyancy, current and wind balance.
+TEST(SystemNode, SolveStaticIsTheCoreStatics) {
+  const std::string srv = nodeName() + "/solve_static";
+  ASSERT_TRUE(ros::service::waitForService(srv, ros::Duration(kWaitSeconds)));
+  mooring_dynamics::SystemStatics call;
+  ASSERT_TRUE(ros::service::call(srv, call));
+  ASSERT_TRUE(call.response.success) << call.response.message;
+  const mooring_dynamics::core::SystemProblem s =
+      mooring_dynamics::core::loadSystemFromFile(std::string(MD_SOURCE_DIR) + "/config/three_leg_buoy.yaml");
+  const mooring_dynamics::core::SystemStaticResult r = mooring_dynamics::core::solveSystemStatic(s);
+  ASSERT_EQ(call.response.point_names.size(), r.points.size());
+  for (std::size_t p = 0; p < r.points.size(); ++p) {
+    EXPECT_EQ(call.response.point_names[p], r.points[p].name);
+    EXPECT_EQ(call.response.point_positions[p].x, r.points[p].x);
+    EXPECT_EQ(call.response.point_positions[p].y, r.points[p].y);
+    EXPECT_EQ(call.response.point_positions[p].z, r.points[p].z);
+    EXPECT_EQ(call.response.point_pull[p].z, r.points[p].fz);
+  }
+  ASSERT_EQ(call.response.top_tension.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(call.response.top_tension[i], r.lines[i].topTension());
+  EXPECT_LE(call.response.min_tension[0], call.response.top_tension[0]);
 }
 
 int main(int argc, char** argv) {

@@ -6,7 +6,8 @@
 //     same rows (its vessel_timeseries.csv),
 // live (test_vessel_node.test) and from a bag replayed with --clock under use_sim_time
 // (test_vessel_node.replay.test), and live from nav_msgs/Odometry (test_vessel_node.odom.test, its
-// twist set to nonsense: unused) and from tf (test_vessel_node.tf.test, one transform at a time,
+// twist set to nonsense and ~use_twist false: unused; test_vessel_node.odom_twist.test, the exact
+// twist of the track used: the Hermite path, against a CLI table with the velocity columns) and from tf (test_vessel_node.tf.test, one transform at a time,
 // each waiting for its wrench as a simulator in lockstep would). Live PoseStamped only: bad samples (NaN quaternion, non-unit quaternion,
 // a stamp going back) are dropped, counted in /diagnostics, and the wrench stays finite. Both:
 // ~solve_static (VesselStatics) returns the core's static wrench bit for bit and a stiffness
@@ -55,11 +56,15 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::string g_mode = "live", g_node = "/vessel";
 std::string g_source = "pose";  // live: pose (PoseStamped), odometry (Odometry) or tf (world -> base_link)
+bool g_twist = false;
+std::string g_fail_line;  // the node's ~test_fail_line (failure injection at solver time 1 s), or empty
+constexpr double kFailTime = 1.0;  // [s] the node's ~test_fail_time in test_vessel_node.fail.test           // odometry: the node uses the twist (~use_twist true); core and CLI get it too
 const std::string kProblem = std::string(MD_SOURCE_DIR) + "/test/data/small_vessel.yaml";
 
 struct Sample {
   ros::Time stamp;
   geometry_msgs::Pose pose;
+  core::BodyTwist twist;  ///< the track's exact twist, body frame (REP 105, as in nav_msgs/Odometry)
 };
 
 /// Surge 0.5 m (period 4 s) and yaw 2 deg (period 5 s), from the file's pose (0, 0, 0, yaw 0).
@@ -73,6 +78,11 @@ std::vector<Sample> track() {
     s.pose.position.x = 0.5 * std::sin(2 * kPi * t / 4.0);
     s.pose.orientation.z = std::sin(0.5 * yaw);
     s.pose.orientation.w = std::cos(0.5 * yaw);
+    // The derivatives: surge velocity (world x) turned into the body by -yaw; yaw rate about z.
+    const double xdot = 0.5 * (2 * kPi / 4.0) * std::cos(2 * kPi * t / 4.0);
+    const double yawdot = 2.0 * kPi / 180.0 * (2 * kPi / 5.0) * std::cos(2 * kPi * t / 5.0);
+    s.twist.linear = Eigen::Vector3d(std::cos(yaw) * xdot, -std::sin(yaw) * xdot, 0.0);
+    s.twist.angular = Eigen::Vector3d(0.0, 0.0, yawdot);
     v.push_back(s);
   }
   return v;
@@ -94,18 +104,31 @@ Row rowOf(const geometry_msgs::WrenchStamped& b, const geometry_msgs::WrenchStam
 }
 
 /// core::VesselLockstep on the same samples, as the node feeds them (time = stamp - first stamp).
-std::vector<Row> coreSeries(const std::vector<Sample>& tr) {
+std::vector<Row> coreSeries(const std::vector<Sample>& tr, bool with_twist = g_twist,
+                            bool with_fail = !g_fail_line.empty(), std::vector<std::vector<double>>* tops = nullptr) {
   core::SystemProblem s = core::loadSystemFromFile(kProblem);
   core::DynamicOptions dyn = s.dynamics;
   dyn.threads = 1;
   core::VesselLockstepOptions lo;
   lo.threads = 1;
   core::VesselLockstep run(s, dyn, lo);
+  if (with_fail) {  // the same injection as the node's ~test_fail_line
+    std::size_t idx = 0;
+    for (std::size_t i = 0; i < s.lines.size(); ++i)
+      if (s.lines[i].name == g_fail_line) idx = i;
+    run.setFailureInjection([idx](std::size_t line, double t1) { return line == idx && std::abs(t1 - kFailTime) < 1e-9; });
+  }
   std::vector<Row> out;
   for (const Sample& x : tr) {
-    const core::VesselLockstep::Result r =
-        run.onSample((x.stamp - tr[0].stamp).toSec(), mooring_dynamics::ros_bridge::toRigidPose(x.pose));
+    const core::VesselLockstep::Result r = run.onSample((x.stamp - tr[0].stamp).toSec(),
+                                                        mooring_dynamics::ros_bridge::toRigidPose(x.pose),
+                                                        with_twist ? &x.twist : nullptr);
     EXPECT_TRUE(r.publish) << r.message;
+    if (tops) {
+      std::vector<double> t;
+      for (const core::StaticResult& r : run.lines()) t.push_back(r.topTension());
+      tops->push_back(t);
+    }
     const core::VesselWrench w = run.wrench();
     Row row;
     for (const Eigen::Vector3d* v : {&w.force_body, &w.moment_body, &w.force_world, &w.moment_world})
@@ -136,12 +159,16 @@ std::vector<std::vector<std::string>> cliSeries(const std::vector<Sample>& tr) {
   fs::create_directories(dir);
   {
     std::ofstream t(dir / "motion.csv");
-    t << "t,x,y,z,qx,qy,qz,qw\n";
+    t << (g_twist ? "t,x,y,z,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz\n" : "t,x,y,z,qx,qy,qz,qw\n");
     for (const Sample& s : tr) {
       const auto& p = s.pose;
       t << exact((s.stamp - tr[0].stamp).toSec()) << "," << exact(p.position.x) << "," << exact(p.position.y) << ","
         << exact(p.position.z) << "," << exact(p.orientation.x) << "," << exact(p.orientation.y) << ","
-        << exact(p.orientation.z) << "," << exact(p.orientation.w) << "\n";
+        << exact(p.orientation.z) << "," << exact(p.orientation.w);
+      if (g_twist)
+        for (const Eigen::Vector3d* v : {&s.twist.linear, &s.twist.angular})
+          for (int i = 0; i < 3; ++i) t << "," << exact((*v)[i]);
+      t << "\n";
     }
     std::ifstream in(kProblem);
     std::stringstream ss;
@@ -172,12 +199,21 @@ std::vector<std::vector<std::string>> cliSeries(const std::vector<Sample>& tr) {
   return rows;
 }
 
+const char* const kLineNames[3] = {"bow", "port_quarter", "stbd_quarter"};  // of small_vessel.yaml
+
 /// The node's outputs by stamp.
 struct Listener {
   std::map<uint64_t, geometry_msgs::WrenchStamped> body, world;
+  std::map<uint64_t, double> top[3];  ///< each line's top tension (CableState), by stamp
   ros::Subscriber s1, s2;
+  std::vector<ros::Subscriber> lines;
   Listener() {
     ros::NodeHandle nh;
+    for (int i = 0; i < 3; ++i)
+      lines.push_back(nh.subscribe<mooring_dynamics::CableState>(
+          g_node + "/lines/" + kLineNames[i] + "/cable_state", 1000, [this, i](const mooring_dynamics::CableState::ConstPtr& m) {
+            if (!m->tension.empty()) top[i][m->header.stamp.toNSec()] = m->tension.back();
+          }));
     s1 = nh.subscribe<geometry_msgs::WrenchStamped>(g_node + "/wrench", 1000, [this](const geometry_msgs::WrenchStamped::ConstPtr& m) {
       body[m->header.stamp.toNSec()] = *m;
     });
@@ -245,7 +281,16 @@ TEST(VesselNode, WrenchSeriesMatchesCoreAndCli) {
       m.header.frame_id = "world";
       m.child_frame_id = "base_link";
       m.pose.pose = s.pose;
-      m.twist.twist.linear.x = 1e3;  // not used: the velocities come from the poses
+      if (g_twist) {  // the exact twist, body frame: used (~use_twist true, the default)
+        m.twist.twist.linear.x = s.twist.linear.x();
+        m.twist.twist.linear.y = s.twist.linear.y();
+        m.twist.twist.linear.z = s.twist.linear.z();
+        m.twist.twist.angular.x = s.twist.angular.x();
+        m.twist.twist.angular.y = s.twist.angular.y();
+        m.twist.twist.angular.z = s.twist.angular.z();
+      } else {
+        m.twist.twist.linear.x = 1e3;  // not used (~use_twist false): the velocities come from the poses
+      }
       pub.publish(m);
       ros::WallDuration(0.02).sleep();
       ros::spinOnce();
@@ -272,9 +317,12 @@ TEST(VesselNode, WrenchSeriesMatchesCoreAndCli) {
   l.spinUntil([&] { return l.has(tr.back().stamp); }, 60.0);
 
   const std::vector<Row> ref = coreSeries(tr);
-  const std::vector<std::vector<std::string>> cli = cliSeries(tr);
+  // (cable_sim has no failure injection: with ~test_fail_line the reference is the core alone.)
+  const std::vector<std::vector<std::string>> cli = g_fail_line.empty() ? cliSeries(tr) : std::vector<std::vector<std::string>>();
   ASSERT_EQ(ref.size(), tr.size());
-  ASSERT_EQ(cli.size(), tr.size()) << "rows of cable_sim's vessel_timeseries.csv";
+  if (g_fail_line.empty()) {
+    ASSERT_EQ(cli.size(), tr.size()) << "rows of cable_sim's vessel_timeseries.csv";
+  }
   for (std::size_t k = 0; k < tr.size(); ++k) {
     ASSERT_TRUE(l.has(tr[k].stamp)) << "no wrench for sample " << k << " (" << g_mode << ")";
     const geometry_msgs::WrenchStamped& b = l.body[tr[k].stamp.toNSec()];
@@ -284,12 +332,72 @@ TEST(VesselNode, WrenchSeriesMatchesCoreAndCli) {
     for (std::size_t c = 0; c < 12; ++c) {
       // Bits: the same doubles through the same code.
       EXPECT_EQ(node[c], ref[k][c]) << "sample " << k << " column " << c;
+      if (!g_fail_line.empty()) continue;
       ASSERT_GT(cli[k].size(), c + 1);
       EXPECT_EQ(csv12(node[c]), cli[k][c + 1]) << "sample " << k << " column " << c << " (cable_sim)";
     }
   }
   // The surge and yaw motion does something: the wrench is not the same at every sample.
   EXPECT_NE(ref.front()[0], ref.back()[0]);
+  if (g_twist) {
+    // The twist is used: the Hermite path's wrench differs from the pose-only path's.
+    const std::vector<Row> pose_only = coreSeries(tr, false);
+    double diff = 0.0;
+    for (std::size_t k = 0; k < tr.size(); ++k) diff = std::max(diff, std::abs(pose_only[k][0] - ref[k][0]));
+    EXPECT_GT(diff, 0.0) << "the twist changed nothing";
+    std::printf("odometry twist: largest surge-force difference Hermite vs pose-only path %.3g N\n", diff);
+  }
+}
+
+// ~test_fail_line (test_vessel_node.fail.test): the named line fails at solver time 1 s; the node
+// stays up and answers every sample, /diagnostics names the line (ERROR for it, OK for the others),
+// and the other lines' top tensions are bit-identical to a clean core run's (no failure).
+TEST(VesselNode, AFailedLineRestartsAloneTheOthersGoOn) {
+  if (g_fail_line.empty()) GTEST_SKIP() << "test_vessel_node.fail.test only";
+  const std::vector<Sample> tr = track();
+  Listener& l = *g_listener;
+  ros::NodeHandle nh;
+  // The totals persist across diagnostics windows: per line "failures (window / total)", and the
+  // run's "last event".
+  std::map<std::string, std::string> line_failures, run;
+  ros::Subscriber diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& st : m->status)
+          for (const auto& kv : st.values) {
+            if (st.name.find(" line ") != std::string::npos && kv.key == "failures (window / total)")
+              line_failures[st.name.substr(st.name.find(" line ") + 6)] = kv.value;
+            if (st.name.find("vessel lockstep") != std::string::npos) run[kv.key] = kv.value;
+          }
+      });
+  std::map<uint64_t, double>* top = l.top;  // received since the start (the Listener subscribes at once)
+  const char* const* names = kLineNames;
+  // (The series was sent by WrenchSeriesMatchesCoreAndCli.)
+  l.spinUntil([&] { return top[0].size() >= tr.size() && top[1].size() >= tr.size() && top[2].size() >= tr.size(); }, 20.0);
+  std::vector<std::vector<double>> clean;
+  coreSeries(tr, g_twist, /*with_fail=*/false, &clean);
+  bool differs = false;
+  for (std::size_t k = 0; k < tr.size(); ++k) {
+    const uint64_t n = tr[k].stamp.toNSec();
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_TRUE(top[i].count(n)) << names[i] << " sample " << k;
+      if (names[i] == g_fail_line) {
+        differs = differs || top[i][n] != clean[k][static_cast<std::size_t>(i)];
+        continue;
+      }
+      EXPECT_EQ(top[i][n], clean[k][static_cast<std::size_t>(i)]) << names[i] << " sample " << k;
+    }
+  }
+  EXPECT_TRUE(differs) << g_fail_line << " restarted: its tension leaves the clean run's";
+  // /diagnostics: one failure, of that line only; the run's last event names it.
+  l.spinUntil([&] { return line_failures.size() == 3 && run.count("line failures (window / total)"); }, 10.0);
+  for (int i = 0; i < 3; ++i) {
+    const std::string n = names[i];
+    const std::string v = line_failures[n];
+    EXPECT_EQ(v.substr(v.find('/') + 2), n == g_fail_line ? "1" : "0") << n << ": " << v;
+  }
+  const std::string f = run["line failures (window / total)"];
+  EXPECT_EQ(f.substr(f.find('/') + 2), "1") << f;
+  EXPECT_NE(run["last event"].find(g_fail_line + " failed and restarted alone"), std::string::npos) << run["last event"];
 }
 
 TEST(VesselNode, BadSamplesAreCountedAndTheWrenchStaysFinite) {
@@ -399,6 +507,8 @@ int main(int argc, char** argv) {
   pnh.param<std::string>("mode", g_mode, g_mode);
   pnh.param<std::string>("node", g_node, g_node);
   pnh.param<std::string>("source", g_source, g_source);
+  pnh.param("twist", g_twist, g_twist);
+  pnh.param<std::string>("fail_line", g_fail_line, g_fail_line);
   Listener l;
   g_listener = &l;
   return RUN_ALL_TESTS();

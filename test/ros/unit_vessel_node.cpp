@@ -193,3 +193,43 @@ TEST(VesselMonitor, CountsDropsAndNamesTheFailedLine) {
   EXPECT_EQ(valueOf(s[3], "failures (window / total)"), "0 / 1");
   EXPECT_EQ(valueOf(s[0], "samples dropped"), "1");
 }
+
+// demo_monitor reads the real-time factor from the run status of any of the three dynamic nodes
+// (it showed "-" for the vessel node, whose status is "<node> vessel lockstep"), never from a
+// per-line status or another node's.
+TEST(DemoMonitor, RecognisesTheRunStatusOfEveryDynamicNode) {
+  const std::string n = "/mooring_dynamics_node";
+  EXPECT_TRUE(rb::isRunStatusName("mooring_dynamics: /mooring_dynamics_node lockstep", n));
+  EXPECT_TRUE(rb::isRunStatusName("mooring_dynamics: /mooring_dynamics_node vessel lockstep", n));
+  EXPECT_TRUE(rb::isRunStatusName("mooring_dynamics: /mooring_dynamics_node system lockstep", n));
+  EXPECT_FALSE(rb::isRunStatusName("mooring_dynamics: /mooring_dynamics_node line bow", n));
+  EXPECT_FALSE(rb::isRunStatusName("mooring_dynamics: /other_node vessel lockstep", n));
+  EXPECT_FALSE(rb::isRunStatusName("mooring_dynamics: /mooring_dynamics_node_2 lockstep", n));
+}
+
+// A line that failed and restarted alone (VesselLockstep's LinesRestarted): the run and that
+// line are ERROR and named, the others stay OK, and the simulated time still counts.
+TEST(VesselMonitor, ALineRestartedAloneIsNamedTheOthersStayOk) {
+  rb::VesselMonitorOptions o;
+  o.motion_timeout = 100.0;
+  rb::VesselMonitor m({"bow", "port", "stbd"}, o, 0.0);
+  core::VesselLockstep::Result r;
+  r.outcome = core::VesselLockstep::Outcome::LinesRestarted;
+  r.publish = true;
+  r.failed_lines = {1};
+  r.message = "line port: failure injected (test hook) (t = 1 s); restarted from statics at the vessel's pose there: "
+              "port; the other lines go on";
+  const std::vector<double> top{1.0, 2.0, 3.0};
+  m.onMotionReceived(0.1);
+  m.onResult(r, 0.1, 0.05, 0.1, &top, 1.0);
+  const std::vector<rb::VesselMonitor::Status> s = m.summarise(0.2);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_EQ(s[0].level, rb::VesselMonitor::ERROR);
+  EXPECT_NE(s[0].message.find("line(s) port failed and restarted alone"), std::string::npos) << s[0].message;
+  EXPECT_EQ(valueOf(s[0], "real-time factor (window)"), "2") << "0.1 s simulated in 0.05 s";
+  EXPECT_EQ(s[1].level, rb::VesselMonitor::OK);
+  EXPECT_EQ(s[2].level, rb::VesselMonitor::ERROR);
+  EXPECT_EQ(valueOf(s[2], "converged"), "false");
+  EXPECT_NE(s[2].message.find("failure injected"), std::string::npos) << s[2].message;
+  EXPECT_EQ(s[3].level, rb::VesselMonitor::OK);
+}

@@ -17,11 +17,13 @@
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/SolveStatic.h"
+#include "mooring_dynamics/SystemStatics.h"
 #include "mooring_dynamics/VesselStatics.h"
 #include "mooring_dynamics/core/model/model.hpp"
 #include "mooring_dynamics/core/model/result.hpp"
 #include "mooring_dynamics/core/model/rigid_pose.hpp"
 #include "mooring_dynamics/core/model/system.hpp"
+#include "mooring_dynamics/core/solvers/system_statics.hpp"
 #include "mooring_dynamics/core/solvers/vessel_statics.hpp"
 
 namespace mooring_dynamics {
@@ -125,6 +127,12 @@ VesselStaticsRequest vesselStaticsFromRequest(const VesselStatics::Request& req,
 void toVesselStaticsResponse(const core::SystemProblem& system, const core::VesselStaticResult& at,
                              const core::StiffnessResult* stiffness, const std::vector<core::OffsetPoint>* curve,
                              const VesselStaticsRequest& request, VesselStatics::Response& res);
+
+/// Fills a SystemStatics response from a system's static result: every point (position, the
+/// lines' pull), every line (top and minimum tension), in the file's order; success = converged.
+/// `reinitialised` is left false (the dynamic node sets it).
+void toSystemStaticsResponse(const core::SystemProblem& system, const core::SystemStaticResult& r,
+                             SystemStatics::Response& res);
 
 /// "%.6g" formatting that prints nan/inf as such (for messages).
 std::string formatNumber(double v);

@@ -10,6 +10,8 @@
 //   ~points/<point>/wrench     geometry_msgs/WrenchStamped: the lines' pull on each point [N]
 //                              (on an anchor or fixed point what it must resist; on a free point
 //                              what its buoyancy, drag and wind balance)
+// Service: ~solve_static (mooring_dynamics/SystemStatics): the system's statics again (reinitialise
+// is ignored in static mode).
 // Full description: docs/ros_interface.md ("Systems of lines").
 #pragma once
 
@@ -17,6 +19,8 @@
 #include <vector>
 
 #include <ros/ros.h>
+
+#include "mooring_dynamics/SystemStatics.h"
 
 #include "mooring_dynamics/core/model/system.hpp"
 
@@ -31,6 +35,7 @@ class SystemStaticNode {
   /// Solves and publishes; false (logged) when the system does not converge.
   bool start();
   const core::SystemProblem& system() const { return system_; }
+  bool onSolveStatic(SystemStatics::Request& req, SystemStatics::Response& res);
 
  private:
   ros::NodeHandle nh_, pnh_;
@@ -39,6 +44,7 @@ class SystemStaticNode {
   double marker_scale_ = 1.0;
   std::vector<ros::Publisher> line_pubs_, point_pubs_;
   ros::Publisher marker_pub_;
+  ros::ServiceServer solve_srv_;
 };
 
 /// True when ~problem_file names a system file (points and lines).

@@ -3,14 +3,16 @@
 // DiagnosticStatus messages (one overall, one per line).
 //
 // One summary per diagnostics period ("window"). Levels (docs/ros_interface.md, "Moored vessel"):
-//   overall  ERROR  a line failed in the window (VesselLockstep restarted every line from statics
-//                   at that sample's pose; the line is named)
+//   overall  ERROR  a line failed in the window (the line and its group restarted alone from
+//                   statics, the others went on; or, when that failed too, every line restarted
+//                   from statics at that sample's pose; the lines are named)
 //            WARN   no motion for more than motion_timeout; samples dropped (bad pose, NaN or
 //                   non-unit quaternion, stamp not increasing, jump, no transform); restarted
 //                   (bag loop, gap, reset); real-time factor below min_real_time_factor
 //            OK     otherwise
-//   per line ERROR  this line failed in the window (named in VesselLockstep's message as
-//                   "line <name>:"), else OK; values: top tension, converged, failures.
+//   per line ERROR  this line failed in the window (Result::failed_lines, or named in
+//                   VesselLockstep's message as "line <name>:"), else OK; values: top tension,
+//                   converged, failures.
 #pragma once
 
 #include <string>
@@ -81,6 +83,12 @@ class VesselMonitor {
   std::string last_event_, last_drop_, last_restart_, last_failure_;
   double solver_time_ = 0.0;
 };
+
+/// True when `status_name` is the run status (not a per-line one) of the node `node` (resolved name,
+/// e.g. "/mooring_dynamics_node"): "mooring_dynamics: <node> lockstep" (single line),
+/// "mooring_dynamics: <node> vessel lockstep" (moored vessel) or "mooring_dynamics: <node> system
+/// lockstep" (system of lines). demo_monitor reads the real-time factor from it.
+bool isRunStatusName(const std::string& status_name, const std::string& node);
 
 }  // namespace ros_bridge
 }  // namespace mooring_dynamics

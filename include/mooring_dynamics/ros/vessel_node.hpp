@@ -9,8 +9,10 @@
 //   ~problem_file     a system file with a `vessel:` section
 //   ~frame_id         world frame of the poses and world-frame outputs (default "world")
 //   ~vessel_frame     body frame (default: vessel.frame of the file)
-//   ~motion_source    "pose" (~vessel_pose, PoseStamped), "odometry" (~vessel_odom, Odometry; its
-//                     pose) or "tf" (poll ~frame_id <- ~vessel_frame at ~tf_poll_rate)
+//   ~motion_source    "pose" (~vessel_pose, PoseStamped), "odometry" (~vessel_odom, Odometry: its
+//                     pose, and its twist unless ~use_twist is false) or "tf" (poll ~frame_id <-
+//                     ~vessel_frame at ~tf_poll_rate)
+//   ~use_twist        odometry: take the velocities at the samples from the twist (default true)
 //   ~threads          threads that advance the lines (default: hardware threads; same bits for any)
 //   ~dt, ~start_tolerance, ~start_angle_tolerance, ~loop_back, ~max_gap, ~max_speed, ~jumps_to_reinit
 //   ~tf_timeout, ~tf_poll_rate, ~motion_timeout, ~diagnostics_period, ~min_real_time_factor
@@ -56,8 +58,9 @@ class VesselNode {
 
   /// One pose sample (public for tests): `frame` its frame (empty: ~frame_id), `field` the message
   /// field of the pose for messages.
+  /// `twist`: the body-frame twist of the sample (odometry with ~use_twist), or null.
   void onMotion(const ros::Time& stamp, const std::string& frame, const geometry_msgs::Pose& pose,
-                const std::string& field);
+                const std::string& field, const core::BodyTwist* twist = nullptr);
 
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSolveStatic(VesselStatics::Request& req, VesselStatics::Response& res);
@@ -82,6 +85,7 @@ class VesselNode {
   std::string file_;
   std::string frame_id_ = "world", vessel_frame_;
   std::string motion_source_ = "pose";
+  bool use_twist_ = true;  ///< odometry: the twist gives the velocities at the samples
   double tf_timeout_ = 0.1;
   bool publish_fairlead_frames_ = false, publish_vessel_frame_ = false;
   std::string frame_prefix_;

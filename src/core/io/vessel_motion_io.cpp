@@ -12,7 +12,7 @@ namespace mooring_dynamics {
 namespace core {
 
 namespace {
-const char* const kColumns[8] = {"t", "x", "y", "z", "qx", "qy", "qz", "qw"};
+const char* const kColumns[14] = {"t", "x", "y", "z", "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy", "wz"};
 }  // namespace
 
 std::vector<PoseSample> parseVesselMotionTable(const std::string& text, const std::string& source) {
@@ -31,7 +31,7 @@ std::vector<PoseSample> parseVesselMotionTable(const std::string& text, const st
     std::string cell;
     while (std::getline(cells, cell, ',')) {
       const std::size_t col = v.size();
-      const char* name = col < 8 ? kColumns[col] : "extra";
+      const char* name = col < 14 ? kColumns[col] : "extra";
       char* end = nullptr;
       errno = 0;
       const double x = std::strtod(cell.c_str(), &end);
@@ -41,12 +41,22 @@ std::vector<PoseSample> parseVesselMotionTable(const std::string& text, const st
         throw ProblemError(where + ": column " + name + " = \"" + cell + "\": not a finite number");
       v.push_back(x);
     }
-    if (v.size() != 8)
-      throw ProblemError(where + ": " + std::to_string(v.size()) + " values, expected 8 (t, x, y, z, qx, qy, qz, qw)");
+    if (v.size() != 8 && v.size() != 14)
+      throw ProblemError(where + ": " + std::to_string(v.size()) +
+                         " values, expected 8 (t, x, y, z, qx, qy, qz, qw) or 14 (the same, then vx, vy, vz, wx, wy, "
+                         "wz: the body-frame twist)");
+    if (!rows.empty() && (v.size() == 14) != rows.front().has_twist)
+      throw ProblemError(where + ": " + std::to_string(v.size()) + " values, the first row " +
+                         (rows.front().has_twist ? "14" : "8") + ": every row has the same columns");
     PoseSample s;
     s.t = v[0];
     s.pose.position = Eigen::Vector3d(v[1], v[2], v[3]);
     s.pose.orientation = Eigen::Quaterniond(v[7], v[4], v[5], v[6]);
+    if (v.size() == 14) {
+      s.has_twist = true;
+      s.twist.linear = Eigen::Vector3d(v[8], v[9], v[10]);
+      s.twist.angular = Eigen::Vector3d(v[11], v[12], v[13]);
+    }
     const std::string bad = s.pose.validate("row");
     if (!bad.empty()) throw ProblemError(where + ": " + bad);
     s.pose.orientation.normalize();
@@ -55,7 +65,7 @@ std::vector<PoseSample> parseVesselMotionTable(const std::string& text, const st
                          std::to_string(rows.back().t) + " s");
     rows.push_back(s);
   }
-  if (rows.empty()) throw ProblemError(source + ": no rows (expected t, x, y, z, qx, qy, qz, qw)");
+  if (rows.empty()) throw ProblemError(source + ": no rows (expected t, x, y, z, qx, qy, qz, qw[, vx, vy, vz, wx, wy, wz])");
   return rows;
 }
 

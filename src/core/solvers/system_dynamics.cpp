@@ -37,7 +37,12 @@ struct SystemDynamics::Impl {
   // Point state at time t: position, velocity, acceleration (3 per point, all points).
   double t = 0.0;
   Eigen::VectorXd X, V, A;
-  Eigen::MatrixXd J;  ///< kept point Jacobian (free points x free points, 3 each)
+  std::vector<std::vector<std::size_t>> groups;     ///< lines of each independent group, in line order
+  std::vector<std::vector<std::size_t>> group_pts;  ///< free points of each group, in point order
+  std::vector<Eigen::MatrixXd> J;                   ///< per group: kept point Jacobian (its free points, 3 each)
+  std::vector<double> line_t0;                      ///< system time at which each line's solver started (0, or its restart)
+  std::function<bool(std::size_t, double)> fail_hook;  ///< test hook: failure injection
+  std::vector<LineGroupRestart> restarts;           ///< of the last advanceTo
   long iterations = 0, line_steps = 0;
   std::unique_ptr<ThreadPool> pool;
   std::function<RigidMotion(double)> vessel_motion;  ///< world frame; holds at the reference pose by default
@@ -62,6 +67,85 @@ struct SystemDynamics::Impl {
       s.vz = v[2];
       return s;
     };
+  }
+
+  /// The dynamic problem of line i of `sys` with its ends at `xyz` (3 per point of `sys`).
+  Problem lineDynamicProblem(const SystemProblem& sys, std::size_t i, const std::vector<double>& xyz) const {
+    Problem p = sys.lineProblem(i, xyz);
+    p.dynamics = opt;
+    p.dynamics.top_motion = TopMotion{};
+    p.dynamics.top_motion.prescribe_position = true;  // the top follows its point
+    if (p.dynamics.duration <= 0.0) p.dynamics.duration = opt.dt;
+    p.dynamics.record_s.clear();
+    return p;
+  }
+
+  /// Group g restarted from statics at time t1 with the vessel at `pose`: new solvers for its lines
+  /// (their time 0 = t1) and its free points' static positions. Not yet swapped in.
+  struct Restart {
+    std::size_t group = 0;
+    std::vector<std::unique_ptr<DynamicSolver3D>> lines;  ///< the group's lines, in its order
+    std::vector<Eigen::Vector3d> points;                  ///< the group's free points, in its order
+    LineGroupRestart report;
+  };
+  /// False, with the reason in `why`, when the group's statics fail there.
+  bool restartGroup(std::size_t g, double t1, const RigidPose& pose, Restart& out, std::string& why) const {
+    SystemProblem placed = system;
+    placed.placeVessel(pose);
+    SystemProblem sub = placed;
+    sub.points.clear();
+    sub.lines.clear();
+    std::vector<std::size_t> map(system.points.size(), SystemLine::kFreeEnd);
+    auto use = [&](std::size_t p) {
+      if (p == SystemLine::kFreeEnd) return p;
+      if (map[p] == SystemLine::kFreeEnd) {
+        map[p] = sub.points.size();
+        SystemPoint pt = placed.points[p];
+        if (pt.free()) {  // the first guess: where it was
+          pt.x = X[static_cast<Eigen::Index>(3 * p)];
+          pt.y = X[static_cast<Eigen::Index>(3 * p + 1)];
+          pt.z = X[static_cast<Eigen::Index>(3 * p + 2)];
+          pt.position_given = true;
+        }
+        sub.points.push_back(pt);
+      }
+      return map[p];
+    };
+    for (std::size_t i : groups[g]) {
+      SystemLine l = system.lines[i];
+      l.from = use(l.from);
+      l.to = use(l.to);
+      sub.lines.push_back(l);
+    }
+    try {
+      const std::string bad = sub.validate();
+      if (!bad.empty()) {
+        why = bad;
+        return false;
+      }
+      const SystemStaticResult st = solveSystemStatic(sub);
+      if (!st.summary.converged) {
+        why = "statics did not converge: " + st.summary.message;
+        return false;
+      }
+      std::vector<double> xyz;
+      for (const auto& pt : st.points) xyz.insert(xyz.end(), {pt.x, pt.y, pt.z});
+      out.group = g;
+      out.lines.clear();
+      for (std::size_t k = 0; k < sub.lines.size(); ++k)
+        out.lines.push_back(std::make_unique<DynamicSolver3D>(lineDynamicProblem(sub, k, xyz)));
+      out.points.clear();
+      for (std::size_t p : group_pts[g]) {
+        const auto& pt = st.points[map[p]];
+        out.points.emplace_back(pt.x, pt.y, pt.z);
+      }
+      out.report.time = t1;
+      out.report.lines = groups[g];
+    } catch (const std::exception& e) {
+      why = e.what();
+      return false;
+    }
+    return true;
   }
 
   double mass(std::size_t p) const {
@@ -141,19 +225,44 @@ SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions
   im.lines_at.resize(np);
   std::vector<double> xyz(im.X.data(), im.X.data() + im.X.size());
   for (std::size_t i = 0; i < system.lines.size(); ++i) {
-    Problem p = im.system.lineProblem(i, xyz);
-    p.dynamics = options;
-    p.dynamics.top_motion = TopMotion{};
-    p.dynamics.top_motion.prescribe_position = true;  // the top follows its point
-    if (p.dynamics.duration <= 0.0) p.dynamics.duration = options.dt;
-    p.dynamics.record_s.clear();
-    im.lines.push_back(std::make_unique<DynamicSolver3D>(p));
+    im.lines.push_back(std::make_unique<DynamicSolver3D>(im.lineDynamicProblem(im.system, i, xyz)));
     im.lines_at[system.lines[i].to].push_back(i);
     if (system.lines[i].from != SystemLine::kFreeEnd) im.lines_at[system.lines[i].from].push_back(i);
     const SystemLine& l = system.lines[i];
     const bool at_free = system.points[l.to].free() || (l.from != SystemLine::kFreeEnd && system.points[l.from].free());
     if (!at_free && (im.isVessel(l.to) || im.isVessel(l.from))) im.vessel_lines.push_back(i);
   }
+  im.line_t0.assign(system.lines.size(), 0.0);
+  // Groups: lines joined through free points (union-find over the lines at each free point).
+  std::vector<std::size_t> root(system.lines.size());
+  for (std::size_t i = 0; i < root.size(); ++i) root[i] = i;
+  auto find = [&](std::size_t i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  for (std::size_t p : im.free_pts)
+    for (std::size_t i : im.lines_at[p]) {
+      const std::size_t a = find(i), b = find(im.lines_at[p].front());
+      if (a != b) root[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<std::size_t> group_of_root(system.lines.size(), SystemLine::kFreeEnd);
+  for (std::size_t i = 0; i < system.lines.size(); ++i) {
+    const std::size_t r = find(i);
+    if (group_of_root[r] == SystemLine::kFreeEnd) {
+      group_of_root[r] = im.groups.size();
+      im.groups.emplace_back();
+      im.group_pts.emplace_back();
+    }
+    im.groups[group_of_root[r]].push_back(i);
+  }
+  for (std::size_t p : im.free_pts) im.group_pts[group_of_root[find(im.lines_at[p].front())]].push_back(p);
+  im.J.resize(im.groups.size());
+}
+
+const std::vector<LineGroupRestart>& SystemDynamics::lastRestarts() const { return impl_->restarts; }
+const std::vector<std::vector<std::size_t>>& SystemDynamics::lineGroups() const { return impl_->groups; }
+void SystemDynamics::setFailureInjection(std::function<bool(std::size_t, double)> fail) {
+  impl_->fail_hook = std::move(fail);
 }
 
 void SystemDynamics::setVesselMotion(std::function<RigidMotion(double)> motion) {
@@ -211,218 +320,232 @@ std::vector<SystemPointResult> SystemDynamics::points() const {
   return out;
 }
 
-namespace {
+bool SystemDynamics::advanceTo(double t_end, std::string* message) {
+  Impl& im = *impl_;
+  im.restarts.clear();
+  const double eps = 1e-9 * im.opt.dt;
+  while (im.t < t_end - eps) {
+    const double dt = std::min(im.opt.dt, t_end - im.t), t1 = im.t + dt;
+    std::vector<std::shared_ptr<const DynamicSolver3D::Saved>> saved;
+    for (const auto& l : im.lines) saved.push_back(l->save());
 
-/// One step of the system from im.t: the free points' new positions by Newton on their force
-/// balance (Newmark's trapezoidal rule in time), every line with an end at a point run through
-/// the step for each iterate of the points. On failure the lines are back at im.t.
-class PointStep {
- public:
-  PointStep(SystemDynamics::Impl& im, double dt, std::string* message)
-      : im_(im), dt_(dt), t1_(im.t + dt), m_(static_cast<int>(3 * im.free_pts.size())), message_(message) {
-    for (const auto& l : im_.lines) saved_.push_back(l->save());
-  }
-
-  /// Predict, iterate the points to balance, accept; false (message set) on failure.
-  bool run() {
-    // Predictor: constant acceleration.
-    Eigen::VectorXd X1 = im_.X + dt_ * im_.V + 0.5 * dt_ * dt_ * im_.A, V1, A1, G;
-    kinematics(X1, V1, A1);
-    // The lines on the vessel that touch no free point: once per step, side by side.
-    if (!runSet(im_.vessel_lines, X1, V1)) return fail(why_);
-    if (!runLines(im_.free_pts, X1, V1)) return fail(why_);
-    residual(X1, V1, A1, G);
-    bool converged = false;
-    if (!iterate(X1, V1, A1, G, converged)) return fail(why_);
-    if (!converged && G.cwiseAbs().maxCoeff() >= kForceTolerance * scale_)
-      return fail("the point iteration did not converge: force residual " + std::to_string(G.cwiseAbs().maxCoeff()) +
-                  " N");
-    accept(X1, V1, A1);
-    return true;
-  }
-
- private:
-  /// Newmark: the new velocity and acceleration of every point from its new position.
-  void kinematics(const Eigen::VectorXd& X1, Eigen::VectorXd& V1, Eigen::VectorXd& A1) const {
-    A1 = (X1 - im_.X - dt_ * im_.V - dt_ * dt_ * (0.5 - kBeta) * im_.A) / (kBeta * dt_ * dt_);
-    V1 = im_.V + dt_ * ((1.0 - kGamma) * im_.A + kGamma * A1);
-  }
-
-  /// The motion of point p over the step: position and velocity linear in time from (X, V) at
-  /// t to (X1, V1) at t1 (a fixed point stays where it is).
-  std::function<TopState(double)> pointMotion(std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) const {
-    const double t0 = im_.t, dt = dt_;
-    const Eigen::Vector3d x0 = im_.X.segment<3>(static_cast<Eigen::Index>(3 * p)),
-                          v0 = im_.V.segment<3>(static_cast<Eigen::Index>(3 * p)),
-                          x1 = X1.segment<3>(static_cast<Eigen::Index>(3 * p)),
-                          v1 = V1.segment<3>(static_cast<Eigen::Index>(3 * p));
-    return [=](double tau) {
-      const double w = dt > 0.0 ? std::clamp((tau - t0) / dt, 0.0, 1.0) : 1.0;
-      const Eigen::Vector3d x = x0 + w * (x1 - x0), v = v0 + w * (v1 - v0);
-      TopState s;
-      s.x = x[0];
-      s.y = x[1];
-      s.z = x[2];
-      s.vx = v[0];
-      s.vy = v[1];
-      s.vz = v[2];
-      return s;
+    // Newmark: the new velocity and acceleration of every point from its new position.
+    auto kinematics = [&](const Eigen::VectorXd& X1, Eigen::VectorXd& V1, Eigen::VectorXd& A1) {
+      A1 = (X1 - im.X - dt * im.V - dt * dt * (0.5 - kBeta) * im.A) / (kBeta * dt * dt);
+      V1 = im.V + dt * ((1.0 - kGamma) * im.A + kGamma * A1);
     };
-  }
+    // The motion of point p over the step: position and velocity linear in time from (X, V) at
+    // t to (X1, V1) at t1 (a fixed point stays where it is).
+    auto pointMotion = [&](std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      const double t0 = im.t;
+      const Eigen::Vector3d x0 = im.X.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                            v0 = im.V.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                            x1 = X1.segment<3>(static_cast<Eigen::Index>(3 * p)),
+                            v1 = V1.segment<3>(static_cast<Eigen::Index>(3 * p));
+      return [=](double tau) {
+        const double w = dt > 0.0 ? std::clamp((tau - t0) / dt, 0.0, 1.0) : 1.0;
+        const Eigen::Vector3d x = x0 + w * (x1 - x0), v = v0 + w * (v1 - v0);
+        TopState s;
+        s.x = x[0];
+        s.y = x[1];
+        s.z = x[2];
+        s.vx = v[0];
+        s.vy = v[1];
+        s.vz = v[2];
+        return s;
+      };
+    };
+    // The path of line i's end at point p over the step (the vessel's fairlead path, or the
+    // point's own motion), in the line solver's time: a line restarted at t_r counts from there.
+    auto endMotion = [&](std::size_t i, std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      std::function<TopState(double)> f =
+          im.isVessel(p) ? im.fairleadMotion(p) : std::function<TopState(double)>(pointMotion(p, X1, V1));
+      const double off = im.line_t0[i];
+      if (off == 0.0) return f;
+      return std::function<TopState(double)>([f, off](double tau) { return f(tau + off); });
+    };
+    // Run the given lines through the step, side by side on the pool (each writes only its own
+    // solver and report). Returns the failed ones, in line order: (line, "line <name>: why").
+    auto runSet = [&](const std::vector<std::size_t>& set, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      std::vector<StepReport> reports(set.size());
+      im.pool->parallelFor(set.size(), [&](std::size_t k) {
+        const std::size_t i = set[k];
+        DynamicSolver3D& line = *im.lines[i];
+        const SystemLine& sl = im.system.lines[i];
+        line.restore(*saved[i]);
+        line.setTopInput(endMotion(i, sl.to, X1, V1));
+        if (sl.from != SystemLine::kFreeEnd && (im.system.points[sl.from].free() || im.isVessel(sl.from)))
+          line.setLowerEndInput(endMotion(i, sl.from, X1, V1));
+        reports[k] = line.advanceTo(t1 - im.line_t0[i]);
+      });
+      im.line_steps += static_cast<long>(set.size());
+      std::vector<std::pair<std::size_t, std::string>> failed;
+      for (std::size_t k = 0; k < set.size(); ++k) {
+        if (reports[k].ok && im.fail_hook && im.fail_hook(set[k], t1)) {
+          reports[k].ok = false;
+          reports[k].message = "failure injected (test hook)";
+        }
+        if (!reports[k].ok) failed.emplace_back(set[k], "line " + im.system.lines[set[k]].name + ": " + reports[k].message);
+      }
+      return failed;
+    };
 
-  /// The path of a line end at point p over the step: the vessel's fairlead path, or the
-  /// point's own motion.
-  std::function<TopState(double)> endMotion(std::size_t p, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) const {
-    return im_.isVessel(p) ? im_.fairleadMotion(p) : pointMotion(p, X1, V1);
-  }
-
-  /// Run the given lines through the step, side by side on the pool (each writes only its own
-  /// solver and report); false, naming the first line in line order that failed.
-  bool runSet(const std::vector<std::size_t>& set, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
-    std::vector<StepReport> reports(set.size());
-    im_.pool->parallelFor(set.size(), [&](std::size_t k) {
-      const std::size_t i = set[k];
-      DynamicSolver3D& line = *im_.lines[i];
-      const SystemLine& sl = im_.system.lines[i];
-      line.restore(*saved_[i]);
-      line.setTopInput(endMotion(sl.to, X1, V1));
-      if (sl.from != SystemLine::kFreeEnd && (im_.system.points[sl.from].free() || im_.isVessel(sl.from)))
-        line.setLowerEndInput(endMotion(sl.from, X1, V1));
-      reports[k] = line.advanceTo(t1_);
-    });
-    im_.line_steps += static_cast<long>(set.size());
-    for (std::size_t k = 0; k < set.size(); ++k)
-      if (!reports[k].ok) {
-        why_ = "line " + im_.system.lines[set[k]].name + ": " + reports[k].message;
+    // Predictor: constant acceleration.
+    Eigen::VectorXd X1 = im.X + dt * im.V + 0.5 * dt * dt * im.A, V1, A1;
+    kinematics(X1, V1, A1);
+    std::vector<Impl::Restart> restarts;
+    std::string abort_why;
+    const RigidMotion vm = im.vessel_motion(t1);
+    auto restart = [&](std::size_t g, const std::string& reason) {
+      Impl::Restart r;
+      std::string why;
+      if (!im.restartGroup(g, t1, vm.pose, r, why)) {
+        abort_why = reason + "; restarting its group from statics failed too: " + why;
         return false;
       }
-    return true;
-  }
+      r.report.reason = reason;
+      restarts.push_back(std::move(r));
+      return true;
+    };
+    std::vector<std::size_t> group_of(im.lines.size());
+    for (std::size_t g = 0; g < im.groups.size(); ++g)
+      for (std::size_t i : im.groups[g]) group_of[i] = g;
 
-  /// Run every line with an end at one of `pts` through the step with the points at X1.
-  bool runLines(const std::vector<std::size_t>& pts, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
-    std::vector<char> done(im_.lines.size(), 0);
-    std::vector<std::size_t> set;
-    for (std::size_t p : pts)
-      for (std::size_t i : im_.lines_at[p])
-        if (!done[i]) {
-          done[i] = 1;
-          set.push_back(i);
+    // The lines on the vessel that touch no free point (each a group of its own): once per step,
+    // side by side; a failed one restarts alone.
+    bool ok = true;
+    for (const auto& f : runSet(im.vessel_lines, X1, V1)) ok = ok && restart(group_of[f.first], f.second);
+
+    // Each group with free points: its own point iteration (so that its bits do not depend on
+    // the other groups), its lines side by side.
+    for (std::size_t g = 0; g < im.groups.size() && ok; ++g) {
+      const std::vector<std::size_t>& pts = im.group_pts[g];
+      if (pts.empty()) continue;
+      const int m = static_cast<int>(3 * pts.size());
+      std::string why;
+      // Run every line with an end at one of `ps` through the step with the points at X1.
+      auto runLines = [&](const std::vector<std::size_t>& ps, const Eigen::VectorXd& Xa, const Eigen::VectorXd& Va) {
+        std::vector<char> done(im.lines.size(), 0);
+        std::vector<std::size_t> set;
+        for (std::size_t p : ps)
+          for (std::size_t i : im.lines_at[p])
+            if (!done[i]) {
+              done[i] = 1;
+              set.push_back(i);
+            }
+        const auto failed = runSet(set, Xa, Va);
+        if (!failed.empty()) why = failed.front().second;
+        return failed.empty();
+      };
+      // Force balance of the group's free points: M a - (pulls + own load).
+      double scale = 1.0;
+      auto residual = [&](const Eigen::VectorXd& Xa, const Eigen::VectorXd& Va, const Eigen::VectorXd& Aa,
+                          Eigen::VectorXd& G) {
+        G.resize(m);
+        for (std::size_t k = 0; k < pts.size(); ++k) {
+          const std::size_t p = pts[k];
+          double F[3];
+          im.load(p, Xa.data() + 3 * p, Va.data() + 3 * p, t1, F);
+          scale = std::max({scale, std::abs(F[2])});
+          for (std::size_t i : im.lines_at[p]) {
+            // A line pulls its upper point with -top_force and its lower point with anchor_force.
+            const StaticResult s = im.lines[i]->snapshot();
+            const bool top = im.system.lines[i].to == p;
+            const double f[3] = {top ? -s.top_force_x : s.anchor_force_x, top ? -s.top_force_y : s.anchor_force_y,
+                                 top ? -s.top_force_z : s.anchor_force_z};
+            for (int c = 0; c < 3; ++c) {
+              F[c] += f[c];
+              scale = std::max(scale, std::abs(f[c]));
+            }
+          }
+          for (int c = 0; c < 3; ++c)
+            G[static_cast<Eigen::Index>(3 * k + c)] = im.mass(p) * Aa[static_cast<Eigen::Index>(3 * p + c)] - F[c];
         }
-    return runSet(set, X1, V1);
-  }
-
-  /// Force balance of every free point: M a - (pulls + own load).
-  void residual(const Eigen::VectorXd& X1, const Eigen::VectorXd& V1, const Eigen::VectorXd& A1, Eigen::VectorXd& G) {
-    G.resize(m_);
-    for (std::size_t k = 0; k < im_.free_pts.size(); ++k) {
-      const std::size_t p = im_.free_pts[k];
-      double F[3];
-      im_.load(p, X1.data() + 3 * p, V1.data() + 3 * p, t1_, F);
-      scale_ = std::max({scale_, std::abs(F[2])});
-      for (std::size_t i : im_.lines_at[p]) {
-        // A line pulls its upper point with -top_force and its lower point with anchor_force.
-        const StaticResult s = im_.lines[i]->snapshot();
-        const bool top = im_.system.lines[i].to == p;
-        const double f[3] = {top ? -s.top_force_x : s.anchor_force_x, top ? -s.top_force_y : s.anchor_force_y,
-                             top ? -s.top_force_z : s.anchor_force_z};
-        for (int c = 0; c < 3; ++c) {
-          F[c] += f[c];
-          scale_ = std::max(scale_, std::abs(f[c]));
+      };
+      // The group's step; false (why set) when a line's step fails or the iteration does not converge.
+      auto stepGroup = [&]() {
+        Eigen::VectorXd G;
+        if (!runLines(pts, X1, V1)) return false;
+        residual(X1, V1, A1, G);
+        bool converged = false;
+        double g_prev = 0.0;
+        Eigen::MatrixXd& J = im.J[g];
+        for (int it = 0; it < kMaxPointIterations && !converged; ++it) {
+          const double gm = G.cwiseAbs().maxCoeff();
+          if (gm < kForceTolerance * scale) {
+            converged = true;
+            break;
+          }
+          // Point Jacobian by finite differences, kept across steps while the iteration contracts.
+          if (J.rows() != m || (it > 0 && gm > 0.25 * g_prev)) {
+            J.resize(m, m);
+            for (std::size_t k = 0; k < pts.size(); ++k) {
+              const std::size_t p = pts[k];
+              for (int c = 0; c < 3; ++c) {
+                Eigen::VectorXd Xp = X1, Vp, Ap, Gp;
+                Xp[static_cast<Eigen::Index>(3 * p + c)] += kFdStep;
+                kinematics(Xp, Vp, Ap);
+                if (!runLines({p}, Xp, Vp)) return false;
+                residual(Xp, Vp, Ap, Gp);
+                // Only the lines at p changed: the other points' rows are unchanged but for M a.
+                J.col(static_cast<Eigen::Index>(3 * k + c)) = (Gp - G) / kFdStep;
+              }
+              if (!runLines({p}, X1, V1)) return false;  // back to the current iterate
+            }
+          }
+          g_prev = gm;
+          const Eigen::VectorXd dX = J.fullPivLu().solve(-G);
+          for (std::size_t k = 0; k < pts.size(); ++k)
+            X1.segment<3>(static_cast<Eigen::Index>(3 * pts[k])) += dX.segment<3>(static_cast<Eigen::Index>(3 * k));
+          kinematics(X1, V1, A1);
+          if (!runLines(pts, X1, V1)) return false;
+          residual(X1, V1, A1, G);
+          ++im.iterations;
         }
-      }
-      for (int c = 0; c < 3; ++c)
-        G[static_cast<Eigen::Index>(3 * k + c)] = im_.mass(p) * A1[static_cast<Eigen::Index>(3 * p + c)] - F[c];
+        if (!converged && G.cwiseAbs().maxCoeff() >= kForceTolerance * scale) {
+          why = "the point iteration did not converge: force residual " + std::to_string(G.cwiseAbs().maxCoeff()) + " N";
+          return false;
+        }
+        return true;
+      };
+      if (!stepGroup()) ok = restart(g, why);
     }
-  }
-
-  /// Newton on the points' force balance from the predictor; `converged` when the residual G
-  /// falls below kForceTolerance of the largest force. False when a line's step fails.
-  bool iterate(Eigen::VectorXd& X1, Eigen::VectorXd& V1, Eigen::VectorXd& A1, Eigen::VectorXd& G, bool& converged) {
-    converged = m_ == 0;
-    double g_prev = 0.0;
-    for (int it = 0; it < kMaxPointIterations && !converged; ++it) {
-      const double g = G.cwiseAbs().maxCoeff();
-      if (g < kForceTolerance * scale_) {
-        converged = true;
-        break;
-      }
-      // Point Jacobian by finite differences, kept across steps while the iteration contracts.
-      if (im_.J.rows() != m_ || (it > 0 && g > 0.25 * g_prev))
-        if (!pointJacobian(X1, V1, G)) return false;
-      g_prev = g;
-      const Eigen::VectorXd dX = im_.J.fullPivLu().solve(-G);
-      for (std::size_t k = 0; k < im_.free_pts.size(); ++k)
-        X1.segment<3>(static_cast<Eigen::Index>(3 * im_.free_pts[k])) += dX.segment<3>(static_cast<Eigen::Index>(3 * k));
-      kinematics(X1, V1, A1);
-      if (!runLines(im_.free_pts, X1, V1)) return false;
-      residual(X1, V1, A1, G);
-      ++im_.iterations;
+    if (!ok) {
+      // A group's statics failed too: the whole step is undone (the replacements are dropped).
+      for (std::size_t i = 0; i < im.lines.size(); ++i) im.lines[i]->restore(*saved[i]);
+      if (message) *message = "t = " + std::to_string(t1) + " s: " + abort_why;
+      return false;
     }
-    return true;
-  }
-
-  /// dG/dX1 by one-sided differences of kFdStep in every free point coordinate, into im.J.
-  bool pointJacobian(const Eigen::VectorXd& X1, const Eigen::VectorXd& V1, const Eigen::VectorXd& G) {
-    im_.J.resize(m_, m_);
-    for (std::size_t k = 0; k < im_.free_pts.size(); ++k) {
-      const std::size_t p = im_.free_pts[k];
-      for (int c = 0; c < 3; ++c) {
-        Eigen::VectorXd Xp = X1, Vp, Ap, Gp;
-        Xp[static_cast<Eigen::Index>(3 * p + c)] += kFdStep;
-        kinematics(Xp, Vp, Ap);
-        if (!runLines({p}, Xp, Vp)) return false;
-        residual(Xp, Vp, Ap, Gp);
-        // Only the lines at p changed: the other points' rows are unchanged but for M a.
-        im_.J.col(static_cast<Eigen::Index>(3 * k + c)) = (Gp - G) / kFdStep;
+    // The restarted groups: their new solvers (time 0 = t1) and free points at rest.
+    for (Impl::Restart& r : restarts) {
+      const std::vector<std::size_t>& gl = im.groups[r.group];
+      for (std::size_t k = 0; k < gl.size(); ++k) {
+        im.lines[gl[k]] = std::move(r.lines[k]);
+        im.line_t0[gl[k]] = t1;
       }
-      if (!runLines({p}, X1, V1)) return false;  // back to the current iterate
+      const std::vector<std::size_t>& gp = im.group_pts[r.group];
+      for (std::size_t k = 0; k < gp.size(); ++k) {
+        X1.segment<3>(static_cast<Eigen::Index>(3 * gp[k])) = r.points[k];
+        V1.segment<3>(static_cast<Eigen::Index>(3 * gp[k])).setZero();
+        A1.segment<3>(static_cast<Eigen::Index>(3 * gp[k])).setZero();
+      }
+      im.J[r.group].resize(0, 0);
+      im.restarts.push_back(r.report);
     }
-    return true;
-  }
-
-  /// The new level: the vessel's points where its motion puts them (the Newmark values are only
-  /// meaningful for the free points), then every point's state at t1.
-  void accept(Eigen::VectorXd& X1, Eigen::VectorXd& V1, Eigen::VectorXd& A1) {
-    const RigidMotion vm = im_.vessel_motion(t1_);
-    for (std::size_t p = 0; p < im_.system.points.size(); ++p) {
-      if (!im_.isVessel(p)) continue;
-      const Eigen::Vector3d r = im_.system.points[p].body_offset;
+    // The vessel's points are where its motion puts them (the Newmark values above are only
+    // meaningful for the free points).
+    for (std::size_t p = 0; p < im.system.points.size(); ++p) {
+      if (!im.isVessel(p)) continue;
+      const Eigen::Vector3d r = im.system.points[p].body_offset;
       X1.segment<3>(static_cast<Eigen::Index>(3 * p)) = vm.pose.apply(r);
       V1.segment<3>(static_cast<Eigen::Index>(3 * p)) = vm.pointVelocity(r);
       A1.segment<3>(static_cast<Eigen::Index>(3 * p)).setZero();
     }
-    im_.vessel_pose = vm.pose;
-    im_.X = X1;
-    im_.V = V1;
-    im_.A = A1;
-    im_.t = t1_;
-  }
-
-  /// Every line back at the step's start; the message names the time and what failed.
-  bool fail(const std::string& what) {
-    for (std::size_t i = 0; i < im_.lines.size(); ++i) im_.lines[i]->restore(*saved_[i]);
-    if (message_) *message_ = "t = " + std::to_string(t1_) + " s: " + what;
-    return false;
-  }
-
-  SystemDynamics::Impl& im_;
-  const double dt_, t1_;
-  const int m_;  ///< unknowns of the point iteration: 3 per free point
-  std::string* message_;
-  std::vector<std::shared_ptr<const DynamicSolver3D::Saved>> saved_;  ///< the lines at the step's start
-  std::string why_;      ///< what the last failed line step said
-  double scale_ = 1.0;   ///< largest force on a point seen in the step [N]
-};
-
-}  // namespace
-
-bool SystemDynamics::advanceTo(double t_end, std::string* message) {
-  Impl& im = *impl_;
-  const double eps = 1e-9 * im.opt.dt;
-  while (im.t < t_end - eps) {
-    const double dt = std::min(im.opt.dt, t_end - im.t);
-    if (!PointStep(im, dt, message).run()) return false;
+    im.vessel_pose = vm.pose;
+    im.X = X1;
+    im.V = V1;
+    im.A = A1;
+    im.t = t1;
   }
   im.t = std::max(im.t, t_end);
   return true;

@@ -28,6 +28,7 @@ const char* toString(VesselLockstep::Outcome o) {
   switch (o) {
     case VesselLockstep::Outcome::Started: return "started";
     case VesselLockstep::Outcome::Advanced: return "advanced";
+    case VesselLockstep::Outcome::LinesRestarted: return "advanced, lines restarted";
     case VesselLockstep::Outcome::Reinitialised: return "reinitialised";
     case VesselLockstep::Outcome::RecoveredFailure: return "recovered from a failure";
     case VesselLockstep::Outcome::Dropped: return "dropped";
@@ -46,6 +47,11 @@ VesselLockstep::VesselLockstep(const SystemProblem& system, const DynamicOptions
 
 VesselLockstep::~VesselLockstep() = default;
 
+void VesselLockstep::setFailureInjection(std::function<bool(std::size_t, double)> fail) {
+  fail_hook_ = std::move(fail);
+  sim_->setFailureInjection(fail_hook_);
+}
+
 double VesselLockstep::solverTime() const { return sim_->time(); }
 
 std::vector<StaticResult> VesselLockstep::lines() const {
@@ -54,7 +60,14 @@ std::vector<StaticResult> VesselLockstep::lines() const {
   return out;
 }
 
-VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, Outcome outcome, const std::string& why) {
+void VesselLockstep::remember(double t, const RigidPose& pose, const BodyTwist* twist) {
+  last_t_ = t;
+  last_pose_ = pose;
+  last_has_twist_ = twist != nullptr;
+  last_motion_ = twist ? motionFromBodyTwist(pose, *twist) : RigidMotion{pose, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+}
+
+VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, const BodyTwist* twist, Outcome outcome, const std::string& why) {
   Result r;
   const RigidPose& ref = system_.vessel.pose;
   const bool at_file_pose = (pose.position - ref.position).norm() <= options_.start_tolerance &&
@@ -64,6 +77,7 @@ VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, Ou
     s.placeVessel(at_file_pose ? ref : pose);
     try {
       sim_ = std::make_unique<SystemDynamics>(s, dynamics_, options_.threads);
+      if (fail_hook_) sim_->setFailureInjection(fail_hook_);
     } catch (const std::exception& e) {
       ++dropped_;
       r.message = "cannot start at this pose: " + std::string(e.what());
@@ -73,8 +87,7 @@ VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, Ou
   pristine_ = false;
   started_ = true;
   t0_ = t;
-  last_t_ = t;
-  last_pose_ = pose;
+  remember(t, pose, twist);
   jumps_ = 0;
   r.outcome = outcome;
   r.publish = true;
@@ -82,9 +95,10 @@ VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, Ou
   return r;
 }
 
-VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_in) {
+VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_in, const BodyTwist* twist) {
   Result r;
   std::string bad = pose_in.validate("pose");
+  if (bad.empty() && twist) bad = twist->validate("twist");
   if (bad.empty() && !std::isfinite(t)) bad = "time = " + num(t) + ": must be finite";
   if (!bad.empty()) {
     ++dropped_;
@@ -93,40 +107,53 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
   }
   RigidPose pose = pose_in;
   pose.orientation.normalize();
-  if (!started_) return start(t, pose, Outcome::Started, "");
+  if (!started_) return start(t, pose, twist, Outcome::Started, "");
   if (t <= last_t_) {
     if (last_t_ - t > options_.loop_back)
-      return start(t, pose, Outcome::Reinitialised, "time went back by " + num(last_t_ - t) + " s (bag loop)");
+      return start(t, pose, twist, Outcome::Reinitialised, "time went back by " + num(last_t_ - t) + " s (bag loop)");
     ++dropped_;
     r.message = "time " + num(t) + " s not after the last sample's " + num(last_t_) + " s";
     return r;
   }
   const double gap = t - last_t_;
   if (options_.max_gap > 0.0 && gap > options_.max_gap)
-    return start(t, pose, Outcome::Reinitialised, "gap of " + num(gap) + " s since the last sample");
+    return start(t, pose, twist, Outcome::Reinitialised, "gap of " + num(gap) + " s since the last sample");
   const double speed = (pose.position - last_pose_.position).norm() / gap;
   if (options_.max_speed > 0.0 && speed > options_.max_speed) {
-    if (++jumps_ >= options_.jumps_to_reinit) return start(t, pose, Outcome::Reinitialised, "the vessel jumped");
+    if (++jumps_ >= options_.jumps_to_reinit) return start(t, pose, twist, Outcome::Reinitialised, "the vessel jumped");
     ++dropped_;
     r.message = "jump implying " + num(speed) + " m/s (max_speed " + num(options_.max_speed) + ")";
     return r;
   }
   jumps_ = 0;
-  const RigidSegment seg(last_t_ - t0_, last_pose_, t - t0_, pose);
+  // Both ends with a twist: the Hermite path through both poses and velocities; else pose-only.
+  const RigidSegment seg = (last_has_twist_ && twist)
+                               ? RigidSegment(last_t_ - t0_, last_motion_, t - t0_, motionFromBodyTwist(pose, *twist))
+                               : RigidSegment(last_t_ - t0_, last_pose_, t - t0_, pose);
   sim_->setVesselMotion([seg](double tau) { return seg.at(tau); });
   std::string why;
   if (!sim_->advanceTo(t - t0_, &why))
-    return start(t, pose, Outcome::RecoveredFailure, "restarted from statics after a failure: " + why);
-  last_t_ = t;
-  last_pose_ = pose;
+    return start(t, pose, twist, Outcome::RecoveredFailure, "restarted from statics after a failure: " + why);
+  remember(t, pose, twist);
   r.outcome = Outcome::Advanced;
   r.publish = true;
+  for (const LineGroupRestart& g : sim_->lastRestarts()) {
+    std::string names;
+    for (std::size_t i : g.lines) {
+      names += (names.empty() ? "" : ", ") + system_.lines[i].name;
+      r.failed_lines.push_back(i);
+    }
+    r.outcome = Outcome::LinesRestarted;
+    r.message += (r.message.empty() ? "" : "; ") + g.reason + " (t = " + num(g.time) + " s); restarted from statics at " +
+                 "the vessel's pose there: " + names + "; the other lines go on";
+  }
   return r;
 }
 
 VesselLockstep::Result VesselLockstep::reset() {
   if (!started_) return {};
-  return start(last_t_, last_pose_, Outcome::Reinitialised, "reset");
+  const BodyTwist tw{last_motion_.pose.toBody(last_motion_.velocity), last_motion_.pose.toBody(last_motion_.angular_velocity)};
+  return start(last_t_, last_pose_, last_has_twist_ ? &tw : nullptr, Outcome::Reinitialised, "reset");
 }
 
 }  // namespace core

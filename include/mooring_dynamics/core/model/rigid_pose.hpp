@@ -47,15 +47,43 @@ struct RigidMotion {
   }
 };
 
-/// The path between two poses that the lockstep drivers follow between samples: the origin moves
-/// on the straight line at constant velocity, the orientation turns about one axis at a constant
-/// rate (slerp along the shorter arc), so velocity and angular velocity are the exact derivatives
-/// of the pose. Outside [t0, t1] the end poses are held, at rest.
+/// A twist in the body frame (REP 105: nav_msgs/Odometry's twist is in its child frame, the body):
+/// the origin's velocity [m/s] and the angular velocity [rad/s], both in body axes.
+struct BodyTwist {
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();
+  /// Empty when finite, else a message naming `what` (e.g. "twist") and the value.
+  std::string validate(const std::string& what) const;
+};
+
+/// The world-frame motion of a body at `pose` with body twist `twist`: v = R v_body,
+/// omega = R omega_body (R = pose.orientation, body -> world).
+RigidMotion motionFromBodyTwist(const RigidPose& pose, const BodyTwist& twist);
+
+/// The path between two samples that the lockstep drivers follow between them. Outside [t0, t1]
+/// the end poses are held, at rest.
+///  * From two poses (pose-only): the origin moves on the straight line at constant velocity, the
+///    orientation turns about one axis at a constant rate (slerp along the shorter arc), so velocity
+///    and angular velocity are the exact derivatives of the pose.
+///  * From two poses with their velocities (RigidMotion, world frame; e.g. from an odometry twist):
+///    the path meets both poses *and* both velocities. The origin follows the cubic Hermite curve
+///    of the two positions and velocities. The orientation is R(t) = R_a Exp(phi(t)) with phi the
+///    cubic Hermite curve in the rotation vector from phi(t0) = 0 to phi(t1) = Log(R_a^T R_b)
+///    (shorter arc), with the end rates phi'(t0) = R_a^T omega_a and phi'(t1) = J_r(phi1)^-1 R_b^T
+///    omega_b (J_r the right Jacobian of SO(3)), so that the angular velocity
+///    omega(t) = R(t) J_r(phi(t)) phi'(t) is omega_a at t0 and omega_b at t1. (The constant-rate
+///    rotation of the pose-only path cannot meet two given angular velocities: its rate is fixed by
+///    the poses.) A constant rate with the matching twist gives the constant-rate rotation again
+///    (phi linear), and a constant velocity the straight line. Velocities are the exact derivatives
+///    of the path. The rotation between two samples must stay below pi (J_r^-1 is singular there):
+///    at coupling rates it is a few degrees.
 class RigidSegment {
  public:
   RigidSegment() = default;
   /// t1 > t0 [s].
   RigidSegment(double t0, const RigidPose& a, double t1, const RigidPose& b);
+  /// The Hermite path; t1 > t0 [s]; velocities and angular velocities in the world frame.
+  RigidSegment(double t0, const RigidMotion& a, double t1, const RigidMotion& b);
   /// A body at rest at `pose` for all times.
   static RigidSegment hold(const RigidPose& pose);
   RigidMotion at(double t) const;
@@ -67,7 +95,15 @@ class RigidSegment {
   Eigen::Vector3d omega_body_ = Eigen::Vector3d::Zero();   ///< rotation vector of a^-1 b per second, body frame of a
   Eigen::Vector3d omega_world_ = Eigen::Vector3d::Zero();  ///< the same in the world frame (constant along the path)
   bool moving_ = false;
+  bool hermite_ = false;
+  Eigen::Vector3d va_ = Eigen::Vector3d::Zero(), vb_ = Eigen::Vector3d::Zero();  ///< Hermite: end velocities, world
+  Eigen::Vector3d phi1_ = Eigen::Vector3d::Zero();                             ///< Hermite: Log(R_a^T R_b)
+  Eigen::Vector3d dphi0_ = Eigen::Vector3d::Zero(), dphi1_ = Eigen::Vector3d::Zero();  ///< Hermite: end rates of phi
 };
+
+/// The right Jacobian of SO(3) at the rotation vector phi, and its inverse (|phi| < pi).
+Eigen::Matrix3d rightJacobianSO3(const Eigen::Vector3d& phi);
+Eigen::Matrix3d rightJacobianSO3Inverse(const Eigen::Vector3d& phi);
 
 }  // namespace core
 }  // namespace mooring_dynamics

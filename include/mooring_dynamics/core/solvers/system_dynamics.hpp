@@ -19,6 +19,17 @@
 // v + omega x (R r). Lines that touch no free point are independent within a step and run on
 // the thread pool (`threads`); every result is summed in line order, so the bits do not depend
 // on the thread count.
+//
+// Failures (issue 19: "one line that fails to converge is reported by name; the others go on"):
+// the lines form independent groups, a group being the lines joined through free points (a buoy's
+// legs, a branched array's lines at its junction float: they share the points' force balance, so
+// they fail and restart together) or a single line touching no free point (a vessel's mooring
+// leg). Every group's step is solved on its own (its own point iteration), so one group's steps do
+// not depend on another's. When a group fails in a base step [t, t1] (a line's smallest step does
+// not converge, or its point iteration does not), it alone restarts from statics at t1 (the
+// vessel's pose at t1, its free points solved again), at rest, and the other groups go on with
+// the bits they would have had anyway; lastRestarts() names the lines. Only when those statics
+// fail too does advanceTo return false.
 #pragma once
 
 #include <array>
@@ -35,6 +46,13 @@
 
 namespace mooring_dynamics {
 namespace core {
+
+/// A group of lines that failed in a step of advanceTo and restarted from statics.
+struct LineGroupRestart {
+  double time = 0.0;               ///< [s] the end of the failed step, where the group restarted
+  std::vector<std::size_t> lines;  ///< the group's lines (indices), in line order
+  std::string reason;              ///< the failure, "line <name>: <solver message>"
+};
 
 class SystemDynamics {
  public:
@@ -61,10 +79,21 @@ class SystemDynamics {
   VesselWrench vesselWrench() const;
   int threads() const;
 
-  /// Advance to t_end in base steps of options.dt (the last one shortened). False, with the
-  /// reason in `message`, when a line's step or the point iteration fails; the state then stays
-  /// at the last converged time.
+  /// Advance to t_end in base steps of options.dt (the last one shortened). A group of lines that
+  /// fails in a step restarts alone from statics at the end of that step (lastRestarts()); true
+  /// then. False, with the reason in `message`, when such a restart's statics fail too; the state
+  /// then stays at the last completed step.
   bool advanceTo(double t_end, std::string* message = nullptr);
+  /// The groups that restarted during the last advanceTo (empty when none did).
+  const std::vector<LineGroupRestart>& lastRestarts() const;
+  /// The independent groups of lines (lines joined through free points restart together), each
+  /// in line order, the groups in the order of their first line.
+  const std::vector<std::vector<std::size_t>>& lineGroups() const;
+  /// TEST HOOK (failure injection; tests only): `fail(line, t1)` true makes line `line`'s step
+  /// ending at t1 count as not converged, as if its smallest step had failed ("failure injected
+  /// (test hook)"). Empty (the default): no injection. Used by test_system_dynamics to check that
+  /// the other groups continue bit for bit.
+  void setFailureInjection(std::function<bool(std::size_t line, double t1)> fail);
 
   double time() const;
   const SystemStaticResult& initialStatic() const;

@@ -3,8 +3,11 @@
 // replaying a bag) and `cable_sim dynamic` on a motion table feed the same samples through the
 // same code and get the same bits.
 //
-// Between two accepted samples the vessel follows RigidSegment (origin on the straight line,
-// orientation turning about one axis at a constant rate; velocities the exact derivatives).
+// Between two accepted samples the vessel follows RigidSegment: from poses alone the origin on the
+// straight line and the orientation turning about one axis at a constant rate; when both samples
+// carry a body twist (an odometry source, or a motion table with velocity columns) the Hermite
+// path that meets both poses and both velocities (rigid_pose.hpp). Velocities are the exact
+// derivatives of the path either way.
 // Policy, per sample at time t [s] (any fixed epoch) and pose (world frame):
 //  * a non-finite position or quaternion, or a quaternion whose norm is off 1 by more than
 //    kUnitQuaternionTolerance: dropped (counted), state kept; an accepted quaternion is normalized;
@@ -14,10 +17,14 @@
 //  * time not increasing: dropped; going back by more than loop_back (a bag loop): restarted;
 //  * a gap over max_gap since the last accepted sample: restarted at the sample (motion unknown);
 //  * a jump implying a speed over max_speed: dropped; jumps_to_reinit in a row: restarted there;
-//  * a line that fails (smallest step cut): restarted from statics at the sample's pose, the
-//    failed line named in the message.
+//  * a line that fails (smallest step cut, or its group's point iteration): that line alone (with
+//    the lines sharing a free point with it: its group, SystemDynamics) restarts from statics at
+//    the pose at the end of the failed step, the others go on (Outcome::LinesRestarted, the lines
+//    named in failed_lines and the message); only when those statics fail too does every line
+//    restart from statics at the sample's pose (Outcome::RecoveredFailure).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,11 +52,14 @@ struct VesselLockstepOptions {
 
 class VesselLockstep {
  public:
-  enum class Outcome { Started, Advanced, Reinitialised, RecoveredFailure, Dropped };
+  enum class Outcome { Started, Advanced, LinesRestarted, Reinitialised, RecoveredFailure, Dropped };
   struct Result {
     Outcome outcome = Outcome::Dropped;
     bool publish = false;     ///< a new state (wrench, lines) is available
     std::string message;      ///< what happened; empty for a plain Advanced
+    /// LinesRestarted: the lines (indices, line order) that failed and restarted from statics,
+    /// with the other lines of their groups.
+    std::vector<std::size_t> failed_lines;
   };
 
   /// Solves the system's statics at its file pose at once (throws std::invalid_argument for an
@@ -57,7 +67,10 @@ class VesselLockstep {
   VesselLockstep(const SystemProblem& system, const DynamicOptions& dynamics, const VesselLockstepOptions& options = {});
   ~VesselLockstep();
 
-  Result onSample(double t, const RigidPose& pose);
+  /// One sample: time t [s], pose (world frame) and, optionally, the body twist at t (body frame,
+  /// REP 105: as nav_msgs/Odometry's twist; converted with the sample's normalized orientation).
+  /// A non-finite twist drops the sample like a non-finite pose.
+  Result onSample(double t, const RigidPose& pose, const BodyTwist* twist = nullptr);
   /// Restart from statics at the last accepted pose (Dropped before the first sample).
   Result reset();
 
@@ -71,18 +84,26 @@ class VesselLockstep {
   VesselWrench wrench() const { return sim_->vesselWrench(); }
   std::vector<StaticResult> lines() const;
   long dropped() const { return dropped_; }
+  /// TEST HOOK (failure injection; tests only): SystemDynamics::setFailureInjection on the run,
+  /// kept across restarts; `t1` is solver time (0 at the run's start).
+  void setFailureInjection(std::function<bool(std::size_t line, double t1)> fail);
 
  private:
-  Result start(double t, const RigidPose& pose, Outcome outcome, const std::string& why);
+  Result start(double t, const RigidPose& pose, const BodyTwist* twist, Outcome outcome, const std::string& why);
+  /// Keeps the last accepted sample (pose, and its world-frame velocities when it had a twist).
+  void remember(double t, const RigidPose& pose, const BodyTwist* twist);
 
   SystemProblem system_;
   DynamicOptions dynamics_;
   VesselLockstepOptions options_;
   std::unique_ptr<SystemDynamics> sim_;
+  std::function<bool(std::size_t, double)> fail_hook_;
   bool pristine_ = true;  ///< sim_ is the file pose's static start, not advanced
   bool started_ = false;
   double t0_ = 0.0, last_t_ = 0.0;
   RigidPose last_pose_;
+  bool last_has_twist_ = false;
+  RigidMotion last_motion_;  ///< the last sample's pose and world velocities (when it had a twist)
   int jumps_ = 0;
   long dropped_ = 0;
 };
