@@ -394,5 +394,27 @@ void toSystemStaticsResponse(const core::SystemProblem& system, const core::Syst
   }
 }
 
+diagnostic_msgs::DiagnosticArray toDiagnostics(const std::vector<VesselMonitor::Status>& statuses,
+                                               const std::string& node, const std::string& run_name,
+                                               const std::string& hardware_id, const ros::Time& stamp) {
+  diagnostic_msgs::DiagnosticArray arr;
+  arr.header.stamp = stamp;
+  for (const VesselMonitor::Status& s : statuses) {
+    diagnostic_msgs::DiagnosticStatus st;
+    st.level = static_cast<int8_t>(s.level);
+    st.name = "mooring_dynamics: " + node + (s.line.empty() ? " " + run_name : " line " + s.line);
+    st.hardware_id = hardware_id;
+    st.message = s.message;
+    for (const auto& kv : s.values) {
+      diagnostic_msgs::KeyValue k;
+      k.key = kv.first;
+      k.value = kv.second;
+      st.values.push_back(k);
+    }
+    arr.status.push_back(st);
+  }
+  return arr;
+}
+
 }  // namespace ros_bridge
 }  // namespace mooring_dynamics

@@ -287,23 +287,8 @@ void SystemDynamicNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   if (monitor_->silent(now) && monitor_->everReceived())
     ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: ROS time has not moved for %.1f s (wall); last state kept",
                       monitor_->secondsSinceMotion(now));
-  diagnostic_msgs::DiagnosticArray arr;
-  arr.header.stamp = ros::Time::now();
-  for (const VesselMonitor::Status& s : monitor_->summarise(now)) {
-    diagnostic_msgs::DiagnosticStatus st;
-    st.level = static_cast<int8_t>(s.level);
-    st.name = "mooring_dynamics: " + ros::this_node::getName() + (s.line.empty() ? " system lockstep" : " line " + s.line);
-    st.hardware_id = system_.name;
-    st.message = s.message;
-    for (const auto& kv : s.values) {
-      diagnostic_msgs::KeyValue k;
-      k.key = kv.first;
-      k.value = kv.second;
-      st.values.push_back(k);
-    }
-    arr.status.push_back(st);
-  }
-  diag_pub_.publish(arr);
+  diag_pub_.publish(toDiagnostics(monitor_->summarise(now), ros::this_node::getName(), "system lockstep", system_.name,
+                                  ros::Time::now()));
 }
 
 bool SystemDynamicNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/WrenchStamped.h>
@@ -25,6 +26,7 @@
 #include "mooring_dynamics/core/model/system.hpp"
 #include "mooring_dynamics/core/solvers/system_statics.hpp"
 #include "mooring_dynamics/core/solvers/vessel_statics.hpp"
+#include "mooring_dynamics/ros/vessel_monitor.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {
@@ -136,6 +138,12 @@ void toSystemStaticsResponse(const core::SystemProblem& system, const core::Syst
 
 /// "%.6g" formatting that prints nan/inf as such (for messages).
 std::string formatNumber(double v);
+
+/// The monitor's statuses as one DiagnosticArray stamped `stamp`: the run's status named
+/// "mooring_dynamics: <node> <run_name>" and one "mooring_dynamics: <node> line <line>" per line.
+diagnostic_msgs::DiagnosticArray toDiagnostics(const std::vector<VesselMonitor::Status>& statuses,
+                                               const std::string& node, const std::string& run_name,
+                                               const std::string& hardware_id, const ros::Time& stamp);
 
 }  // namespace ros_bridge
 }  // namespace mooring_dynamics
