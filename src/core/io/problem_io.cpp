@@ -142,7 +142,7 @@ void readEnvironment(const Item& it, Environment& env, const std::string& base_d
 
 Material readMaterial(const Item& it, const std::string& name) {
   const Map m(it, {"EA", "tension_strain", "EI", "GJ", "mass", "added_mass", "wet_weight", "diameter",
-                   "cdn", "cdt", "max_strain"});
+                   "cdn", "cdt", "max_strain", "mbl"});
   Material mat;
   mat.name = name;
   if (m.has("EA") && m.has("tension_strain"))
@@ -177,6 +177,7 @@ Material readMaterial(const Item& it, const std::string& name) {
   mat.cdn = m.number("cdn", Range::NonNegative);
   mat.cdt = m.number("cdt", Range::NonNegative);
   mat.max_strain = m.number("max_strain", mat.max_strain, Range::Positive);
+  mat.mbl = m.number("mbl", 0.0, Range::Positive);
   return mat;
 }
 

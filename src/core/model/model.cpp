@@ -334,6 +334,7 @@ std::string validateMaterial(const Material& m) {
   if (!(e = check(finite(m.cdn) && m.cdn >= 0.0, k + "cdn", m.cdn, "must be >= 0")).empty()) return e;
   if (!(e = check(finite(m.cdt) && m.cdt >= 0.0, k + "cdt", m.cdt, "must be >= 0")).empty()) return e;
   if (!(e = check(finite(m.max_strain) && m.max_strain > 0.0, k + "max_strain", m.max_strain, "must be > 0")).empty()) return e;
+  if (!(e = check(finite(m.mbl) && m.mbl >= 0.0, k + "mbl", m.mbl, "must be > 0 (or 0 when not given)")).empty()) return e;
   return {};
 }
 

@@ -31,6 +31,7 @@ struct Material {
   double cdn = 0.0;                       ///< normal drag coefficient [-]
   double cdt = 0.0;                       ///< tangential drag coefficient [-]
   double max_strain = 0.2;                ///< strain beyond which the law is not trusted [-]
+  double mbl = 0.0;                       ///< minimum breaking load [N]; 0 = not given
 
   /// Effective tension T(eps) [N] and its slope dT/deps [N].
   double tension(double eps) const;
