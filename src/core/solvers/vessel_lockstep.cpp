@@ -20,6 +20,7 @@ std::string VesselLockstepOptions::validate() const {
   if (!(start_angle_tolerance >= 0.0)) return "start_angle_tolerance = " + num(start_angle_tolerance) + " rad: must be >= 0";
   if (!(loop_back > 0.0)) return "loop_back = " + num(loop_back) + " s: must be > 0";
   if (jumps_to_reinit < 1) return "jumps_to_reinit = " + std::to_string(jumps_to_reinit) + ": must be >= 1";
+  if (failures_to_reinit < 1) return "failures_to_reinit = " + std::to_string(failures_to_reinit) + ": must be >= 1";
   if (threads < 1) return "threads = " + std::to_string(threads) + ": must be >= 1";
   return {};
 }
@@ -29,6 +30,7 @@ const char* toString(VesselLockstep::Outcome o) {
     case VesselLockstep::Outcome::Started: return "started";
     case VesselLockstep::Outcome::Advanced: return "advanced";
     case VesselLockstep::Outcome::Reinitialised: return "reinitialised";
+    case VesselLockstep::Outcome::Failed: return "failed, last good state kept";
     case VesselLockstep::Outcome::RecoveredFailure: return "recovered from a failure";
     case VesselLockstep::Outcome::Dropped: return "dropped";
   }
@@ -66,6 +68,7 @@ VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, Ou
       sim_ = std::make_unique<SystemDynamics>(s, dynamics_, options_.threads);
     } catch (const std::exception& e) {
       ++dropped_;
+      r.reason = Reason::StartFailed;
       r.message = "cannot start at this pose: " + std::string(e.what());
       return r;
     }
@@ -76,6 +79,7 @@ VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, Ou
   last_t_ = t;
   last_pose_ = pose;
   jumps_ = 0;
+  failures_ = 0;
   r.outcome = outcome;
   r.publish = true;
   r.message = why;
@@ -89,6 +93,10 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
   if (!bad.empty()) {
     ++dropped_;
     r.message = bad;
+    r.reason = !pose_in.position.allFinite()                 ? Reason::NonFinitePosition
+               : !pose_in.orientation.coeffs().allFinite() ? Reason::NonFiniteOrientation
+               : std::isfinite(t)                          ? Reason::NonUnitOrientation
+                                                           : Reason::NonFiniteTime;
     return r;
   }
   RigidPose pose = pose_in;
@@ -96,27 +104,48 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
   if (!started_) return start(t, pose, Outcome::Started, "");
   if (t <= last_t_) {
     if (last_t_ - t > options_.loop_back)
-      return start(t, pose, Outcome::Reinitialised, "time went back by " + num(last_t_ - t) + " s (bag loop)");
+      return withReason(start(t, pose, Outcome::Reinitialised, "time went back by " + num(last_t_ - t) + " s (bag loop)"),
+                        Reason::LoopBack);
     ++dropped_;
     r.message = "time " + num(t) + " s not after the last sample's " + num(last_t_) + " s";
+    r.reason = t == last_t_ ? Reason::SameStamp : Reason::StampBack;
     return r;
   }
   const double gap = t - last_t_;
   if (options_.max_gap > 0.0 && gap > options_.max_gap)
-    return start(t, pose, Outcome::Reinitialised, "gap of " + num(gap) + " s since the last sample");
+    return withReason(start(t, pose, Outcome::Reinitialised, "gap of " + num(gap) + " s since the last sample"),
+                      Reason::Gap);
   const double speed = (pose.position - last_pose_.position).norm() / gap;
   if (options_.max_speed > 0.0 && speed > options_.max_speed) {
-    if (++jumps_ >= options_.jumps_to_reinit) return start(t, pose, Outcome::Reinitialised, "the vessel jumped");
+    if (++jumps_ >= options_.jumps_to_reinit)
+      return withReason(start(t, pose, Outcome::Reinitialised, "the vessel jumped"), Reason::Jumps);
     ++dropped_;
     r.message = "jump implying " + num(speed) + " m/s (max_speed " + num(options_.max_speed) + ")";
+    r.reason = Reason::Jump;
     return r;
   }
   jumps_ = 0;
   const RigidSegment seg(last_t_ - t0_, last_pose_, t - t0_, pose);
   sim_->setVesselMotion([seg](double tau) { return seg.at(tau); });
   std::string why;
-  if (!sim_->advanceTo(t - t0_, &why))
-    return start(t, pose, Outcome::RecoveredFailure, "restarted from statics after a failure: " + why);
+  if (!sim_->advanceTo(t - t0_, &why)) {
+    if (++failures_ >= options_.failures_to_reinit)
+      return withReason(start(t, pose, Outcome::RecoveredFailure,
+                              "restarted from statics after " + std::to_string(failures_) + " failures in a row: " + why),
+                        Reason::SolverFailed);
+    // Keep the last good state: every line stays at the last converged step ts, where the vessel
+    // was on this sample's path; the next sample moves it on from there.
+    const double ts = sim_->time();
+    last_pose_ = seg.at(ts).pose;
+    last_t_ = t0_ + ts;
+    r.outcome = Outcome::Failed;
+    r.reason = Reason::SolverFailed;
+    r.publish = true;
+    r.message = why + "; the last good state (t = " + num(ts) + " s) is kept; failure " + std::to_string(failures_) +
+                " of " + std::to_string(options_.failures_to_reinit) + " in a row before a restart from statics";
+    return r;
+  }
+  failures_ = 0;
   last_t_ = t;
   last_pose_ = pose;
   r.outcome = Outcome::Advanced;
@@ -126,7 +155,12 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
 
 VesselLockstep::Result VesselLockstep::reset() {
   if (!started_) return {};
-  return start(last_t_, last_pose_, Outcome::Reinitialised, "reset");
+  return withReason(start(last_t_, last_pose_, Outcome::Reinitialised, "reset"), Reason::Reset);
+}
+
+VesselLockstep::Result VesselLockstep::withReason(Result r, Reason reason) {
+  if (r.reason == Reason::None) r.reason = reason;
+  return r;
 }
 
 }  // namespace core

@@ -14,8 +14,11 @@
 //  * time not increasing: dropped; going back by more than loop_back (a bag loop): restarted;
 //  * a gap over max_gap since the last accepted sample: restarted at the sample (motion unknown);
 //  * a jump implying a speed over max_speed: dropped; jumps_to_reinit in a row: restarted there;
-//  * a line that fails (smallest step cut): restarted from statics at the sample's pose, the
-//    failed line named in the message.
+//  * a line that fails (smallest step cut): the last good state is kept (every line stays at
+//    the last converged step) and published for this sample (Failed, the failed line named in
+//    the message); the next sample continues from it, the vessel moving on from where it was at
+//    that step. failures_to_reinit failures in a row: restarted from statics at the sample's pose
+//    (RecoveredFailure).
 #pragma once
 
 #include <memory>
@@ -38,6 +41,7 @@ struct VesselLockstepOptions {
   double max_gap = 5.0;                  ///< [s] a longer gap restarts; <= 0: never
   double max_speed = 50.0;               ///< [m/s] a faster jump of the origin is dropped; <= 0: no check
   int jumps_to_reinit = 3;               ///< this many jumps in a row restart at the new pose
+  int failures_to_reinit = 3;            ///< this many failed samples in a row restart from statics
   int threads = 1;                       ///< threads that advance the lines (>= 1; same bits for any)
   /// Empty when valid, else the field, value and constraint.
   std::string validate() const;
@@ -45,9 +49,15 @@ struct VesselLockstepOptions {
 
 class VesselLockstep {
  public:
-  enum class Outcome { Started, Advanced, Reinitialised, RecoveredFailure, Dropped };
+  enum class Outcome { Started, Advanced, Reinitialised, Failed, RecoveredFailure, Dropped };
+  /// Why a sample was dropped, the run restarted or failed (counted apart in the node's diagnostics).
+  enum class Reason {
+    None, NonFinitePosition, NonFiniteOrientation, NonUnitOrientation, NonFiniteTime, SameStamp, StampBack, Jump,
+    StartFailed, LoopBack, Gap, Jumps, Reset, SolverFailed
+  };
   struct Result {
     Outcome outcome = Outcome::Dropped;
+    Reason reason = Reason::None;
     bool publish = false;     ///< a new state (wrench, lines) is available
     std::string message;      ///< what happened; empty for a plain Advanced
   };
@@ -74,6 +84,8 @@ class VesselLockstep {
 
  private:
   Result start(double t, const RigidPose& pose, Outcome outcome, const std::string& why);
+  /// `r` with `reason` unless it has one already (StartFailed).
+  static Result withReason(Result r, Reason reason);
 
   SystemProblem system_;
   DynamicOptions dynamics_;
@@ -84,6 +96,7 @@ class VesselLockstep {
   double t0_ = 0.0, last_t_ = 0.0;
   RigidPose last_pose_;
   int jumps_ = 0;
+  int failures_ = 0;  ///< consecutive failed samples
   long dropped_ = 0;
 };
 
