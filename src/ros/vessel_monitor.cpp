@@ -24,7 +24,13 @@ VesselMonitor::VesselMonitor(std::vector<std::string> line_names, const VesselMo
       line_last_failure_(names_.size()),
       top_tension_(names_.size(), 0.0),
       max_top_tension_(names_.size(), 0.0),
-      last_motion_wall_(wall_now) {}
+      last_motion_wall_(wall_now) {
+  namespace k = vessel_keys;
+  tally_ = EventTally({k::kNonFinitePosition, k::kNonFiniteOrientation, k::kNonUnitOrientation, k::kNonFiniteTime,
+                       k::kZeroStamp, k::kUnknownFrame, k::kSameStamp, k::kStampBack, k::kJump, k::kStartFailed,
+                       k::kRestartLoop, k::kRestartGap, k::kRestartJumps, k::kRestartReset, k::kRestartFailures,
+                       k::kFailedKept, k::kRequestRejected});
+}
 
 void VesselMonitor::add(Counts& a, const Counts& b) {
   a.samples += b.samples;
@@ -57,20 +63,39 @@ void VesselMonitor::onMotionReceived(double wall_now) {
   ++window_.samples;
 }
 
-void VesselMonitor::onInputRejected(double, const std::string& message) {
+void VesselMonitor::onInputRejected(double, const std::string& message, const std::string& key) {
   ++window_.dropped;
+  tally_.count(key);
   last_drop_ = message;
   last_event_ = "dropped: " + message;
+}
+
+void VesselMonitor::onRequestRejected(double, const std::string& message) {
+  ++requests_rejected_;
+  tally_.count(vessel_keys::kRequestRejected);
+  last_request_ = message;
+  last_event_ = "request rejected: " + message;
 }
 
 void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, double wall_spent, double advanced,
                              const std::vector<double>* top_tension, double solver_time) {
   using O = core::VesselLockstep::Outcome;
+  using R = core::VesselLockstep::Reason;
+  namespace k = vessel_keys;
   solver_time_ = solver_time;
   window_.wall += wall_spent;
   switch (r.outcome) {
     case O::Dropped:
       ++window_.dropped;
+      tally_.count(r.reason == R::NonFinitePosition      ? k::kNonFinitePosition
+                   : r.reason == R::NonFiniteOrientation ? k::kNonFiniteOrientation
+                   : r.reason == R::NonUnitOrientation   ? k::kNonUnitOrientation
+                   : r.reason == R::NonFiniteTime        ? k::kNonFiniteTime
+                   : r.reason == R::SameStamp            ? k::kSameStamp
+                   : r.reason == R::StampBack            ? k::kStampBack
+                   : r.reason == R::Jump                 ? k::kJump
+                   : r.reason == R::StartFailed          ? k::kStartFailed
+                                                         : k::kOther);
       last_drop_ = r.message;
       last_event_ = "dropped: " + r.message;
       break;
@@ -78,15 +103,25 @@ void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, doub
     case O::Started: last_event_ = "started" + (r.message.empty() ? std::string() : ": " + r.message); break;
     case O::Reinitialised:
       ++window_.restarts;
+      tally_.count(r.reason == R::LoopBack ? k::kRestartLoop
+                   : r.reason == R::Gap    ? k::kRestartGap
+                   : r.reason == R::Jumps  ? k::kRestartJumps
+                                           : k::kRestartReset);
       last_restart_ = r.message;
       last_event_ = "restarted from statics: " + r.message;
       break;
+    case O::Failed:
     case O::RecoveredFailure: {
       ++window_.failures;
+      window_.sim += advanced;
+      last_failure_kept_ = r.outcome == O::Failed;
+      tally_.count(last_failure_kept_ ? k::kFailedKept : k::kRestartFailures);
       last_failure_ = r.message;
       const int i = failedLine(r.message);
       last_event_ = (i >= 0 ? "line " + names_[static_cast<std::size_t>(i)] + " failed; " : std::string()) +
-                    "every line restarted from statics at the sample's pose: " + r.message;
+                    (last_failure_kept_ ? "the last good state is kept and published: "
+                                        : "every line restarted from statics at the sample's pose: ") +
+                    r.message;
       if (i >= 0) {
         ++line_failures_window_[static_cast<std::size_t>(i)];
         ++line_failures_total_[static_cast<std::size_t>(i)];
@@ -113,13 +148,16 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
 
   Status s;
   std::vector<std::string> errors, warnings;
-  if (w.failures > 0) errors.push_back(std::to_string(w.failures) + " line failure(s), restarted from statics: " + last_failure_);
+  if (w.failures > 0) errors.push_back(std::to_string(w.failures) + " line failure(s): " + last_event_);
   const double quiet = wall_now - last_motion_wall_;
   if (quiet > options_.motion_timeout)
     warnings.push_back(ever_received_ ? "no motion for " + fmt(quiet, "%.1f") + " s (last good state kept)"
                                       : "waiting for motion (none received yet)");
   if (w.dropped > 0) warnings.push_back(std::to_string(w.dropped) + " sample(s) dropped: " + last_drop_);
   if (w.restarts > 0) warnings.push_back(std::to_string(w.restarts) + " restart(s): " + last_restart_);
+  if (requests_rejected_ > 0)
+    warnings.push_back(std::to_string(requests_rejected_) + " service request(s) rejected: " + last_request_);
+  requests_rejected_ = 0;
   const double rtf = w.wall > 0.0 ? w.sim / w.wall : 0.0;
   if (w.sim > 0.0 && rtf < options_.min_real_time_factor)
     warnings.push_back("real-time factor " + fmt(rtf, "%.2f") + " < " + fmt(options_.min_real_time_factor, "%g"));
@@ -142,6 +180,7 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
   kv(s, "samples dropped", std::to_string(total_.dropped));
   kv(s, "restarts (window / total)", std::to_string(w.restarts) + " / " + std::to_string(total_.restarts));
   kv(s, "line failures (window / total)", std::to_string(w.failures) + " / " + std::to_string(total_.failures));
+  tally_.closeWindow(s.values);
   kv(s, "seconds since last motion [s]", ever_received_ ? fmt(quiet, "%.3g") : "-");
   kv(s, "last event", last_event_.empty() ? "none" : last_event_);
   out.push_back(s);
@@ -151,7 +190,9 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
     l.line = names_[i];
     const bool failed = line_failures_window_[i] > 0;
     l.level = failed ? ERROR : OK;
-    l.message = failed ? "failed (" + line_last_failure_[i] + "); every line restarted from statics at the sample's pose"
+    l.message = failed ? "failed (" + line_last_failure_[i] + "); " +
+                             (last_failure_kept_ ? std::string("the last good state is kept and published")
+                                                 : std::string("every line restarted from statics at the sample's pose"))
                        : have_state_ ? "top tension " + fmt(top_tension_[i], "%.1f") + " N" : "waiting for motion";
     kv(l, "top tension [N]", have_state_ ? fmt(top_tension_[i], "%.6g") : "-");
     kv(l, "max top tension [N]", have_state_ ? fmt(max_top_tension_[i], "%.6g") : "-");
