@@ -82,6 +82,15 @@ bool loadSystem(const std::string& path, core::SystemProblem& s, std::ostream& e
 
 }  // namespace
 
+void writeRunSummaryJson(std::ostream& f, const RunSummary& s) {
+  f << "{\n  \"problem\": " << jsonText(s.problem) << ",\n  \"kind\": " << jsonText(s.kind)
+    << ",\n  \"completed\": " << (s.completed ? "true" : "false") << ",\n  \"message\": " << jsonText(s.message)
+    << ",\n  \"simulated_time\": " << csvNum(s.simulated_time) << ",\n  \"duration\": " << csvNum(s.duration)
+    << ",\n  \"samples\": " << s.samples << ",\n  \"wall_seconds\": " << csvNum(s.wall_seconds)
+    << ",\n  \"real_time_factor\": " << csvNum(s.wall_seconds > 0.0 ? s.simulated_time / s.wall_seconds : 0.0)
+    << ",\n  \"timeseries\": " << jsonText(s.timeseries) << "\n}\n";
+}
+
 /// Create the output directory; false (and the message on err) when that fails.
 bool makeOutputDir(const fs::path& dir, std::ostream& err) {
   std::error_code ec;
@@ -228,8 +237,13 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
           fmtNum("%g", s.dynamics.duration) + " s";
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  // The last sample written is the last good state: a failed step leaves the lines at their last
+  // converged step, which may lie after it, but between samples nothing is written.
+  const double t_good = rows.back()[0];
   out << s.name << ": system dynamic run " << (ok ? "completed" : "STOPPED") << "\n";
-  if (!ok) out << "  stopped        " << why << "\n";
+  if (!ok)
+    out << "  stopped        " << why << "\n"
+        << "  last good      t = " << fmtNum("%g", t_good) << " s (the last sample written)\n";
   out << "  time           " << fmtNum("%g", sim->time()) << " of " << fmtNum("%g", s.dynamics.duration) << " s, dt "
       << fmtNum("%g", s.dynamics.dt) << " s, " << rows.size() << " samples\n";
   for (std::size_t i = 0; i < s.lines.size(); ++i) {
@@ -263,9 +277,27 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
                    },
                    err))
       return kExitIo;
-    out << "wrote " << ts.string() << "\n";
+    RunSummary sum;
+    sum.problem = s.name;
+    sum.kind = "system";
+    sum.completed = ok;
+    sum.message = ok ? "" : why;
+    sum.simulated_time = t_good;
+    sum.duration = s.dynamics.duration;
+    sum.wall_seconds = wall;
+    sum.samples = rows.size();
+    sum.timeseries = ts.filename().string();
+    const fs::path js = dir / "dynamic_summary.json";
+    if (!writeFile(js, [&](std::ostream& f) { writeRunSummaryJson(f, sum); }, err)) return kExitIo;
+    out << "wrote " << ts.string() << " and " << js.string() << "\n";
   }
-  return ok ? kExitOk : kExitNotConverged;
+  if (!ok) {
+    err << kProg << ": error: the system dynamic run stopped at t = " << fmtNum("%g", t_good) << " s of "
+        << fmtNum("%g", s.dynamics.duration) << " s (" << why << ")"
+        << (out_dir.empty() ? "" : "; results up to that time written, marked \"completed\": false") << "\n";
+    return kExitNotConverged;
+  }
+  return kExitOk;
 }
 
 }  // namespace detail
