@@ -653,6 +653,15 @@ TEST(VesselStreams, DuplicateStamp) { duplicateStamp(vk::kSameStamp); }
 TEST(VesselStreams, FarFutureStamp) { farFutureStamp(vk::kRestartGap, vk::kRestartLoop); }
 TEST(VesselStreams, HugeJump) { hugeJump(vk::kJump); }
 TEST(VesselStreams, RepeatedJumpsRestart) { repeatedJumps(vk::kRestartJumps); }
+TEST(VesselStreams, FarAwayPoseCannotStart) {
+  // Three jumps in a row to a pose 10 km away: the restart there fails (no line reaches), counted;
+  // the run goes on from its last good state with the next good sample.
+  Stream s;
+  for (int i = 0; i < 3; ++i) g_h->send(withPosition(g_h->good(g_h->next()), 0, 1e4));
+  s.after();
+  EXPECT_EQ(s.grew(vk::kStartFailed), 1) << s.changes();
+  EXPECT_EQ(s.grew(vk::kJump), 2) << s.changes();
+}
 TEST(VesselStreams, Burst1kHz) { burst(); }
 TEST(VesselStreams, SilentTopic) { silentTopic(false); }
 TEST(VesselStreams, WrongFrameId) { wrongFrame(vk::kUnknownFrame); }
