@@ -113,6 +113,17 @@ int runSystemStatic(const std::string& path, bool want_table, std::size_t stride
                     const std::string& out_dir, std::ostream& out, std::ostream& err);
 /// `dynamic` on a file with a vessel (cmd_vessel.cpp): the vessel follows vessel.motion_table
 /// (or holds still) through core::VesselLockstep, the lines on `threads` threads.
+/// dynamic_summary.json of a system or vessel run: the keys of a single line's summary that apply.
+struct RunSummary {
+  std::string problem, kind;  ///< kind: "system" or "vessel"
+  bool completed = false;
+  std::string message;        ///< why the run stopped ("" when completed)
+  double simulated_time = 0.0, duration = 0.0, wall_seconds = 0.0;
+  std::size_t samples = 0;
+  std::string timeseries;     ///< the CSV file written
+};
+void writeRunSummaryJson(std::ostream& f, const RunSummary& s);  // cmd_system.cpp
+
 int runVesselDynamic(const core::SystemProblem& s, int threads, const std::string& out_dir, std::ostream& out,
                      std::ostream& err);
 /// `dynamic` on a system file, cmd_system.cpp: `overrides` applies the command-line options.

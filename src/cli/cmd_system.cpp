@@ -83,6 +83,15 @@ bool loadSystem(const std::string& path, core::SystemProblem& s, std::ostream& e
 
 }  // namespace
 
+void writeRunSummaryJson(std::ostream& f, const RunSummary& s) {
+  f << "{\n  \"problem\": " << jsonText(s.problem) << ",\n  \"kind\": " << jsonText(s.kind)
+    << ",\n  \"completed\": " << (s.completed ? "true" : "false") << ",\n  \"message\": " << jsonText(s.message)
+    << ",\n  \"simulated_time\": " << csvNum(s.simulated_time) << ",\n  \"duration\": " << csvNum(s.duration)
+    << ",\n  \"samples\": " << s.samples << ",\n  \"wall_seconds\": " << csvNum(s.wall_seconds)
+    << ",\n  \"real_time_factor\": " << csvNum(s.wall_seconds > 0.0 ? s.simulated_time / s.wall_seconds : 0.0)
+    << ",\n  \"timeseries\": " << jsonText(s.timeseries) << "\n}\n";
+}
+
 /// Create the output directory; false (and the message on err) when that fails.
 bool makeOutputDir(const fs::path& dir, std::ostream& err) {
   std::error_code ec;
@@ -191,6 +200,9 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   std::unique_ptr<core::SystemDynamics> sim;
   try {
     sim = std::make_unique<core::SystemDynamics>(s, s.dynamics, threads);
+    // Offline, a line that cannot go on stops the run (exit 4, the last good state written)
+    // rather than restart from statics as the node's lines do.
+    sim->setRestartFailedGroups(false);
   } catch (const std::invalid_argument& e) {
     err << kProg << ": error: " << path << ": " << e.what() << "\n";
     return kExitBadInput;
@@ -212,26 +224,14 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   sample();
   bool ok = true;
   std::string why;
-  // A group of lines that failed and restarted alone from statics (SystemDynamics) is an event:
-  // the run goes on (as the node's), but does not count as completed as given.
-  std::vector<std::string> events;
-  auto collect = [&]() {
-    for (const core::LineGroupRestart& g : sim->lastRestarts()) {
-      std::string names;
-      for (std::size_t i : g.lines) names += (names.empty() ? "" : ", ") + s.lines[i].name;
-      events.push_back("t = " + fmtNum("%g", g.time) + " s: " + g.reason + "; restarted from statics: " + names);
-    }
-  };
   const long samples = static_cast<long>(std::floor(s.dynamics.duration / dout + 1e-9));
   for (long k = 1; k <= samples && ok; ++k) {
     ok = sim->advanceTo(k * dout, &why);
-    collect();
     if (ok) sample();
   }
   // The end time when the duration is not a whole number of samples (as a single line's run).
   if (ok && s.dynamics.duration - static_cast<double>(samples) * dout > 1e-9 * dout) {
     ok = sim->advanceTo(s.dynamics.duration, &why);
-    collect();
     if (ok) sample();
   }
   // Never "completed" short of the end time.
@@ -241,10 +241,13 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
           fmtNum("%g", s.dynamics.duration) + " s";
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  out << s.name << ": system dynamic run "
-      << (!ok ? "STOPPED" : events.empty() ? "completed" : "completed with line restarts") << "\n";
-  if (!ok) out << "  stopped        " << why << "\n";
-  for (const auto& e : events) out << "  event          " << e << "\n";
+  // The last sample written is the last good state: a failed step leaves the lines at their last
+  // converged step, which may lie after it, but between samples nothing is written.
+  const double t_good = rows.back()[0];
+  out << s.name << ": system dynamic run " << (ok ? "completed" : "STOPPED") << "\n";
+  if (!ok)
+    out << "  stopped        " << why << "\n"
+        << "  last good      t = " << fmtNum("%g", t_good) << " s (the last sample written)\n";
   out << "  time           " << fmtNum("%g", sim->time()) << " of " << fmtNum("%g", s.dynamics.duration) << " s, dt "
       << fmtNum("%g", s.dynamics.dt) << " s, " << rows.size() << " samples\n";
   for (std::size_t i = 0; i < s.lines.size(); ++i) {
@@ -278,9 +281,27 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
                    },
                    err))
       return kExitIo;
-    out << "wrote " << ts.string() << "\n";
+    RunSummary sum;
+    sum.problem = s.name;
+    sum.kind = "system";
+    sum.completed = ok;
+    sum.message = ok ? "" : why;
+    sum.simulated_time = t_good;
+    sum.duration = s.dynamics.duration;
+    sum.wall_seconds = wall;
+    sum.samples = rows.size();
+    sum.timeseries = ts.filename().string();
+    const fs::path js = dir / "dynamic_summary.json";
+    if (!writeFile(js, [&](std::ostream& f) { writeRunSummaryJson(f, sum); }, err)) return kExitIo;
+    out << "wrote " << ts.string() << " and " << js.string() << "\n";
   }
-  return ok && events.empty() ? kExitOk : kExitNotConverged;
+  if (!ok) {
+    err << kProg << ": error: the system dynamic run stopped at t = " << fmtNum("%g", t_good) << " s of "
+        << fmtNum("%g", s.dynamics.duration) << " s (" << why << ")"
+        << (out_dir.empty() ? "" : "; results up to that time written, marked \"completed\": false") << "\n";
+    return kExitNotConverged;
+  }
+  return kExitOk;
 }
 
 }  // namespace detail

@@ -240,6 +240,7 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
   const double t_last = s.dynamics.duration > 0.0 ? t_first + s.dynamics.duration : samples.back().t;
   core::VesselLockstepOptions lo;
   lo.threads = threads;
+  lo.restart_failed_lines = false;  // offline, a line that cannot go on stops the run (exit 4)
   const auto wall0 = std::chrono::steady_clock::now();
   std::unique_ptr<core::VesselLockstep> run;
   try {
@@ -254,13 +255,18 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
   std::vector<std::vector<double>> rows;
   std::vector<std::string> events;
   bool ok = true;
+  std::string why;
   for (const core::PoseSample& p : samples) {
     if (p.t > t_last + 1e-9) break;
     const core::VesselLockstep::Result r = run->onSample(p.t, p.pose, p.has_twist ? &p.twist : nullptr);
     if (!r.message.empty()) events.push_back("t = " + fmtNum("%g", p.t) + " s: " + toString(r.outcome) + ": " + r.message);
-    if (r.outcome == core::VesselLockstep::Outcome::RecoveredFailure ||
-        r.outcome == core::VesselLockstep::Outcome::LinesRestarted)
+    if (r.outcome == core::VesselLockstep::Outcome::Failed || r.outcome == core::VesselLockstep::Outcome::RecoveredFailure) {
+      // As a single line's run: the run cannot go on as given; the series ends at the last good
+      // sample (VesselLockstep kept that state), written below, and the run is not complete.
       ok = false;
+      why = r.message.substr(0, r.message.find("; the last good state"));  // the lockstep's note on going on
+      break;
+    }
     if (!r.publish) continue;
     const core::VesselWrench w = run->wrench();
     std::vector<double> row{p.t};
@@ -273,10 +279,16 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double simulated = rows.empty() ? 0.0 : rows.back()[0] - rows.front()[0];
   const bool reached = !rows.empty() && rows.back()[0] >= std::min(t_last, samples.back().t) - 1e-9;
+  if (ok && !reached)
+    why = "reached t = " + fmtNum("%g", rows.empty() ? t_first : rows.back()[0]) + " s of " + fmtNum("%g", t_last) + " s";
   ok = ok && reached;
-  out << s.name << ": vessel dynamic run " << (ok ? "completed" : "NOT completed") << " (" << s.lines.size()
+  const double t_good = rows.empty() ? t_first : rows.back()[0];
+  out << s.name << ": vessel dynamic run " << (ok ? "completed" : "STOPPED") << " (" << s.lines.size()
       << " lines, " << run->dynamics().threads() << " thread" << (run->dynamics().threads() > 1 ? "s" : "") << ")\n";
   for (const auto& e : events) out << "  event          " << e << "\n";
+  if (!ok)
+    out << "  stopped        " << why << "\n"
+        << "  last good      t = " << fmtNum("%g", t_good) << " s (the last sample written)\n";
   out << "  time           " << fmtNum("%g", simulated) << " s of vessel motion ("
       << (s.vessel.motion_table.empty() ? std::string("held at the file's pose") : s.vessel.motion_table) << "), dt "
       << fmtNum("%g", s.dynamics.dt) << " s, " << rows.size() << " samples\n";
@@ -308,10 +320,23 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
                    },
                    err))
       return kExitIo;
-    out << "wrote " << ts.string() << "\n";
+    RunSummary sum;
+    sum.problem = s.name;
+    sum.kind = "vessel";
+    sum.completed = ok;
+    sum.message = ok ? "" : why;
+    sum.simulated_time = simulated;
+    sum.duration = t_last - t_first;
+    sum.wall_seconds = wall;
+    sum.samples = rows.size();
+    sum.timeseries = ts.filename().string();
+    const fs::path js = fs::path(out_dir) / "dynamic_summary.json";
+    if (!writeFile(js, [&](std::ostream& f) { writeRunSummaryJson(f, sum); }, err)) return kExitIo;
+    out << "wrote " << ts.string() << " and " << js.string() << "\n";
   }
   if (!ok) {
-    err << kProg << ": error: the run did not complete as given (see the events above)\n";
+    err << kProg << ": error: the vessel dynamic run stopped at t = " << fmtNum("%g", t_good) << " s (" << why << ")"
+        << (out_dir.empty() ? "" : "; results up to that time written, marked \"completed\": false") << "\n";
     return kExitNotConverged;
   }
   return kExitOk;

@@ -17,8 +17,27 @@ const char* toString(LockstepDriver::Outcome o) {
     case LockstepDriver::Outcome::Started: return "started";
     case LockstepDriver::Outcome::Advanced: return "advanced";
     case LockstepDriver::Outcome::Reinitialised: return "re-initialised";
+    case LockstepDriver::Outcome::Failed: return "solver failed, last good state kept";
     case LockstepDriver::Outcome::RecoveredFailure: return "recovered from a solver failure";
     case LockstepDriver::Outcome::Dropped: return "dropped";
+  }
+  return "?";
+}
+
+const char* toString(LockstepDriver::Reason r) {
+  switch (r) {
+    case LockstepDriver::Reason::None: return "none";
+    case LockstepDriver::Reason::NonFinite: return "non-finite";
+    case LockstepDriver::Reason::OffPlane: return "off the plane y = 0";
+    case LockstepDriver::Reason::SameStamp: return "same stamp";
+    case LockstepDriver::Reason::StampBack: return "stamp back";
+    case LockstepDriver::Reason::Jump: return "jump";
+    case LockstepDriver::Reason::StartFailed: return "statics failed";
+    case LockstepDriver::Reason::LoopBack: return "bag loop";
+    case LockstepDriver::Reason::Gap: return "gap";
+    case LockstepDriver::Reason::Jumps: return "jumps";
+    case LockstepDriver::Reason::Request: return "request";
+    case LockstepDriver::Reason::SolverFailed: return "solver failed";
   }
   return "?";
 }
@@ -124,6 +143,11 @@ LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const Lo
 
 LockstepDriver::~LockstepDriver() = default;
 
+LockstepDriver::Result LockstepDriver::withReason(Result r, Reason reason) {
+  if (!r.start_failed) r.reason = reason;
+  return r;
+}
+
 double LockstepDriver::solverTime() const { return solver_ ? solver_->time() : 0.0; }
 
 std::string LockstepDriver::point(double x, double y, double z) const {
@@ -177,6 +201,7 @@ LockstepDriver::Result LockstepDriver::start(double t, double x, double y, doubl
     if (!fresh) {
       started_ = false;
       r.outcome = Outcome::Dropped;
+      r.reason = Reason::StartFailed;
       r.start_failed = true;
       r.message = (why.empty() ? std::string() : why + "; ") + "cannot start from statics with the top at " +
                   (threeD() ? "(x, y, z) = " : "(x, z) = ") + point(x, y, z) + " m: " + error +
@@ -195,6 +220,7 @@ LockstepDriver::Result LockstepDriver::start(double t, double x, double y, doubl
   prev_y_ = top.y;
   prev_z_ = top.z;
   jumps_ = 0;
+  failures_ = 0;
   state_ = solver_->snapshot();
   r.publish = true;
   r.message = (why.empty() ? std::string() : why + "; ") +
@@ -211,27 +237,34 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double y, do
   if (!(std::isfinite(t) && std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
     r.message = "non-finite sample (t, x, y, z) = (" + formatNumber(t) + ", " + formatNumber(x) + ", " +
                 formatNumber(y) + ", " + formatNumber(z) + ")";
+    r.reason = Reason::NonFinite;
     return r;
   }
   r.message = positionError(x, y, z);
-  if (!r.message.empty()) return r;
+  if (!r.message.empty()) {
+    r.reason = Reason::OffPlane;
+    return r;
+  }
   if (!threeD()) y = 0.0;
   if (!started_) return start(t, x, y, z, Outcome::Started, "");
 
   const double gap = t - last_time_;
   if (gap <= 0.0) {
     if (-gap > options_.loop_back)
-      return start(t, x, y, z, Outcome::Reinitialised,
-                   "time went back by " + formatNumber(-gap) + " s (more than " + formatNumber(options_.loop_back) +
-                       " s: bag loop?)");
+      return withReason(start(t, x, y, z, Outcome::Reinitialised,
+                              "time went back by " + formatNumber(-gap) + " s (more than " +
+                                  formatNumber(options_.loop_back) + " s: bag loop?)"),
+                        Reason::LoopBack);
     r.message = "time not increasing: " + formatNumber(t) + " s after " + formatNumber(last_time_) + " s (" +
                 (gap == 0.0 ? std::string("same stamp") : "back by " + formatNumber(-gap) + " s") + ")";
+    r.reason = gap == 0.0 ? Reason::SameStamp : Reason::StampBack;
     return r;
   }
   if (options_.max_gap > 0.0 && gap > options_.max_gap)
-    return start(t, x, y, z, Outcome::Reinitialised,
-                 "gap of " + formatNumber(gap) + " s since the last sample (more than " +
-                     formatNumber(options_.max_gap) + " s: the motion in between is unknown)");
+    return withReason(start(t, x, y, z, Outcome::Reinitialised,
+                            "gap of " + formatNumber(gap) + " s since the last sample (more than " +
+                                formatNumber(options_.max_gap) + " s: the motion in between is unknown)"),
+                      Reason::Gap);
 
   const double tp = prev_t_, xp = prev_x_, yp = prev_y_, zp = prev_z_;
   const double tn = t - t0_;
@@ -243,9 +276,11 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double y, do
                                formatNumber(tn - tp) + " s: " + formatNumber(speed) +
                                " m/s, more than max_speed = " + formatNumber(options_.max_speed) + " m/s";
       if (++jumps_ >= options_.jumps_to_reinit)
-        return start(t, x, y, z, Outcome::Reinitialised,
-                     what + " (" + std::to_string(jumps_) + " samples in a row: the source moved)");
+        return withReason(start(t, x, y, z, Outcome::Reinitialised,
+                                what + " (" + std::to_string(jumps_) + " samples in a row: the source moved)"),
+                          Reason::Jumps);
       r.message = what;
+      r.reason = Reason::Jump;
       return r;
     }
   }
@@ -256,10 +291,36 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double y, do
   r.report = solver_->advanceTo(tn);
   if (!r.report.ok) {
     const core::StepReport rep = r.report;
-    r = start(t, x, y, z, Outcome::RecoveredFailure, "dynamic solver failed: " + rep.message);
-    r.report = rep;
+    if (++failures_ >= options_.failures_to_reinit) {
+      const int n = failures_;
+      r = start(t, x, y, z, Outcome::RecoveredFailure,
+                "dynamic solver failed (" + std::to_string(n) + " samples in a row): " + rep.message);
+      r.report = rep;
+      r.reason = Reason::SolverFailed;
+      return r;
+    }
+    // Keep the last good state: the solver stays at its last converged step ts (tp <= ts < tn),
+    // where the top was on this sample's segment; the next sample moves it on from there.
+    const double ts = std::min(std::max(solver_->time(), tp), tn);
+    const double w = tn > tp ? (ts - tp) / (tn - tp) : 0.0;
+    r.advanced = ts - tp;
+    prev_t_ = ts;
+    prev_x_ = xp + w * (x - xp);
+    prev_y_ = yp + w * (y - yp);
+    prev_z_ = zp + w * (z - zp);
+    last_time_ = t0_ + ts;
+    state_ = solver_->snapshot();
+    state_.summary.converged = false;  // not the state at this sample's time
+    r.outcome = Outcome::Failed;
+    r.reason = Reason::SolverFailed;
+    r.publish = true;
+    r.message = "dynamic solver failed: " + rep.message + "; the last good state (solver time " + formatNumber(ts) +
+                " s, top at " + point(prev_x_, prev_y_, prev_z_) + " m) is kept and published with converged = "
+                "false; the next sample continues from it (" + std::to_string(failures_) + " of " +
+                std::to_string(options_.failures_to_reinit) + " failures in a row before statics are re-solved)";
     return r;
   }
+  failures_ = 0;
   r.advanced = tn - tp;
   prev_t_ = tn;
   prev_x_ = x;
@@ -296,6 +357,7 @@ LockstepDriver::Result LockstepDriver::reinitialiseAt(double x, double y, double
   const double t = last_time_;
   const double keep_x = prev_x_, keep_y = prev_y_, keep_z = prev_z_, keep_t0 = t0_, keep_prev_t = prev_t_;
   Result r = start(t, x, y, z, Outcome::Reinitialised, why);
+  if (!r.start_failed) r.reason = Reason::Request;
   if (r.start_failed) {
     // The old solver is still there: keep running it.
     started_ = true;

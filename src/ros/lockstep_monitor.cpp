@@ -19,7 +19,14 @@ std::string fmt(double v, const char* f = "%.4g") {
 }  // namespace
 
 LockstepMonitor::LockstepMonitor(const MonitorOptions& options, double wall_now)
-    : options_(options), last_motion_wall_(wall_now) {}
+    : options_(options),
+      tally_({lockstep_keys::kNonFinite, lockstep_keys::kZeroStamp, lockstep_keys::kUnknownFrame,
+              lockstep_keys::kOffPlane, lockstep_keys::kSameStamp, lockstep_keys::kStampBack, lockstep_keys::kJump,
+              lockstep_keys::kStartFailed, lockstep_keys::kNoTransform, lockstep_keys::kOrientationNonFinite,
+              lockstep_keys::kOrientationNonUnit, lockstep_keys::kReinitLoop, lockstep_keys::kReinitGap,
+              lockstep_keys::kReinitJumps, lockstep_keys::kReinitRequest, lockstep_keys::kReinitFailures,
+              lockstep_keys::kFailedKept, lockstep_keys::kRequestRejected}),
+      last_motion_wall_(wall_now) {}
 
 void LockstepMonitor::add(Counts& a, const Counts& b) {
   a.samples += b.samples;
@@ -48,9 +55,25 @@ void LockstepMonitor::onMotionReceived(double wall_now) {
   ++window_.samples;
 }
 
-void LockstepMonitor::onInputRejected(double wall_now, const std::string& message) {
+void LockstepMonitor::onInputRejected(double wall_now, const std::string& message, const std::string& key) {
   ++window_.rejected;
+  tally_.count(key);
   last_drop_ = message;
+  setError(wall_now, message);
+}
+
+void LockstepMonitor::onInputNote(double, const std::string& message, const std::string& key, bool warn) {
+  tally_.count(key);
+  if (warn) {
+    ++notes_warn_;
+    last_note_ = message;
+  }
+}
+
+void LockstepMonitor::onRequestRejected(double wall_now, const std::string& message) {
+  ++requests_rejected_;
+  tally_.count(lockstep_keys::kRequestRejected);
+  last_request_ = message;
   setError(wall_now, message);
 }
 
@@ -62,13 +85,22 @@ void LockstepMonitor::onResult(const LockstepDriver::Result& r, double wall_now,
   window_.steps += r.report.steps;
   window_.cuts += r.report.cuts;
   window_.newton += r.report.newton_iterations;
+  using R = LockstepDriver::Reason;
+  namespace k = lockstep_keys;
   switch (r.outcome) {
     case O::Dropped:
       if (r.start_failed) {
         ++window_.start_failures;
+        tally_.count(k::kStartFailed);
         setError(wall_now, r.message);
       } else {
         ++window_.dropped;
+        tally_.count(r.reason == R::NonFinite   ? k::kNonFinite
+                     : r.reason == R::OffPlane  ? k::kOffPlane
+                     : r.reason == R::SameStamp ? k::kSameStamp
+                     : r.reason == R::StampBack ? k::kStampBack
+                     : r.reason == R::Jump      ? k::kJump
+                                                : k::kOther);
         last_drop_ = r.message;
         setError(wall_now, r.message);
       }
@@ -76,11 +108,24 @@ void LockstepMonitor::onResult(const LockstepDriver::Result& r, double wall_now,
     case O::Advanced: window_.sim += r.advanced; break;
     case O::Reinitialised:
       ++window_.reinit;
+      tally_.count(r.reason == R::LoopBack ? k::kReinitLoop
+                   : r.reason == R::Gap    ? k::kReinitGap
+                   : r.reason == R::Jumps  ? k::kReinitJumps
+                                           : k::kReinitRequest);
       last_reinit_ = r.message;
+      break;
+    case O::Failed:
+      ++window_.failures;
+      window_.sim += r.advanced;
+      tally_.count(k::kFailedKept);
+      last_failure_ = r.message;
+      setError(wall_now, lineName() + ": " + r.message);
       break;
     case O::RecoveredFailure:
       ++window_.failures;
-      setError(wall_now, r.message);
+      tally_.count(k::kReinitFailures);
+      last_failure_ = r.message + "; re-initialised from statics at the sample";
+      setError(wall_now, lineName() + ": " + r.message);
       break;
     case O::Started: break;
   }
@@ -105,7 +150,7 @@ LockstepMonitor::Summary LockstepMonitor::summarise(double wall_now) {
 
   std::vector<std::string> errors, warnings;
   if (w.failures > 0)
-    errors.push_back(std::to_string(w.failures) + " solver failure(s), re-initialised from statics");
+    errors.push_back(std::to_string(w.failures) + " solver failure(s) on " + lineName() + ": " + last_failure_);
   if (w.start_failures > 0)
     errors.push_back("statics failed at the requested top " + std::to_string(w.start_failures) + " time(s)");
   const double quiet = wall_now - last_motion_wall_;
@@ -115,6 +160,12 @@ LockstepMonitor::Summary LockstepMonitor::summarise(double wall_now) {
   if (w.dropped + w.rejected > 0)
     warnings.push_back(std::to_string(w.dropped + w.rejected) + " motion sample(s) dropped: " + last_drop_);
   if (w.reinit > 0) warnings.push_back(std::to_string(w.reinit) + " re-initialisation(s): " + last_reinit_);
+  if (notes_warn_ > 0)
+    warnings.push_back(std::to_string(notes_warn_) + " sample(s) with a bad unused field accepted: " + last_note_);
+  if (requests_rejected_ > 0)
+    warnings.push_back(std::to_string(requests_rejected_) + " service request(s) rejected: " + last_request_);
+  notes_warn_ = 0;
+  requests_rejected_ = 0;
   if (w.cuts > 0) warnings.push_back(std::to_string(w.cuts) + " step cut(s)");
   const double rtf = w.wall > 0.0 ? w.sim / w.wall : 0.0;
   if (w.sim > 0.0 && rtf < options_.min_real_time_factor)
@@ -141,6 +192,8 @@ LockstepMonitor::Summary LockstepMonitor::summarise(double wall_now) {
   kv("solver time [s]", fmt(solver_time_));
   kv("motion samples (window)", std::to_string(w.samples));
   kv("states published (window)", std::to_string(w.published));
+  kv("motion samples (window / total)", std::to_string(w.samples) + " / " + std::to_string(total_.samples));
+  kv("states published (window / total)", std::to_string(w.published) + " / " + std::to_string(total_.published));
   kv("samples dropped (window / total)", std::to_string(w.dropped + w.rejected) + " / " +
                                              std::to_string(total_.dropped + total_.rejected));
   kv("re-initialisations (window / total)", std::to_string(w.reinit) + " / " + std::to_string(total_.reinit));
@@ -149,6 +202,7 @@ LockstepMonitor::Summary LockstepMonitor::summarise(double wall_now) {
   kv("step cuts (window / total)", std::to_string(w.cuts) + " / " + std::to_string(total_.cuts));
   kv("Newton iterations (window / total)", std::to_string(w.newton) + " / " + std::to_string(total_.newton));
   kv("Newton iterations per step (window)", w.steps > 0 ? fmt(static_cast<double>(w.newton) / w.steps) : "-");
+  tally_.closeWindow(s.values);
   kv("slack events (total)", std::to_string(total_.slack_events));
   kv("slack now", slack_now_ ? "true" : "false");
   kv("min tension [N]", have_state_ ? fmt(min_tension_, "%.6g") : "-");

@@ -11,6 +11,7 @@
 #include <tf2_geometry_msgs/tf2_geometry_msgs.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "mooring_dynamics/core/model/rigid_pose.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 #include "mooring_dynamics/ros/params.hpp"
 #include "mooring_dynamics/ros/static_node.hpp"
@@ -75,6 +76,7 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
   const double diag_period = doubleParam(pnh_, "diagnostics_period", 1.0, [](double v) { return v > 0.0; },
                                          "must be > 0 [s]");
   pnh_.param("republish_when_silent", republish_when_silent_, true);
+  mo.line_name = problem_.name;
 
   pnh_.param("publish_body_frames", publish_body_frames_, false);
   std::string default_prefix = ros::this_node::getName();
@@ -157,12 +159,32 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
            driver_->staticTopZ(), dt, input.c_str(), frame_id_.c_str(), vessel_frame_.c_str());
 }
 
+void LockstepNode::checkOrientation(const geometry_msgs::Quaternion& q, const std::string& field) {
+  // The orientation is not used (the top is a moment-free point): a bad one does not drop the
+  // sample, it is counted; a non-finite one (a broken source) also warns. A zero or otherwise
+  // non-unit quaternion is common in hand-written poses and only counted.
+  const double c[4] = {q.x, q.y, q.z, q.w};
+  for (double v : c)
+    if (!std::isfinite(v)) {
+      monitor_->onInputNote(wallNow(), field + " = (" + formatNumber(q.x) + ", " + formatNumber(q.y) + ", " +
+                                           formatNumber(q.z) + ", " + formatNumber(q.w) + "): not finite (unused)",
+                            lockstep_keys::kOrientationNonFinite, true);
+      return;
+    }
+  const double n = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  if (std::abs(n - 1.0) > core::kUnitQuaternionTolerance)
+    monitor_->onInputNote(wallNow(), field + ": norm " + formatNumber(n) + " (unused)", lockstep_keys::kOrientationNonUnit,
+                          false);
+}
+
 void LockstepNode::onPose(const geometry_msgs::PoseStamped::ConstPtr& msg) {
+  checkOrientation(msg->pose.orientation, "pose.orientation");
   onMotion(msg->header.stamp, msg->header.frame_id, msg->pose.position.x, msg->pose.position.y,
            msg->pose.position.z, "pose.position");
 }
 
 void LockstepNode::onOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
+  checkOrientation(msg->pose.pose.orientation, "pose.pose.orientation");
   onMotion(msg->header.stamp, msg->header.frame_id, msg->pose.pose.position.x, msg->pose.pose.position.y,
            msg->pose.pose.position.z, "pose.pose.position");
 }
@@ -176,7 +198,7 @@ void LockstepNode::pollTf(const ros::WallTimerEvent&) {
     const std::string msg = "no transform " + frame_id_ + " <- " + tf_source_frame_ + " (~tf_source_frame): " +
                             e.what();
     ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: top motion: %s; state kept", msg.c_str());
-    monitor_->onInputRejected(wallNow(), msg);
+    monitor_->onInputRejected(wallNow(), msg, lockstep_keys::kNoTransform);
     return;
   }
   if (tr.header.stamp == last_tf_stamp_) return;  // no new transform since the last poll
@@ -185,9 +207,9 @@ void LockstepNode::pollTf(const ros::WallTimerEvent&) {
            tr.transform.translation.z, "transform.translation");
 }
 
-void LockstepNode::reject(const std::string& message) {
+void LockstepNode::reject(const std::string& message, const char* key) {
   ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: top motion dropped: %s; state kept", message.c_str());
-  monitor_->onInputRejected(wallNow(), message);
+  monitor_->onInputRejected(wallNow(), message, key);
 }
 
 void LockstepNode::onMotion(const ros::Time& stamp, const std::string& frame, double x, double y, double z,
@@ -199,12 +221,13 @@ void LockstepNode::onMotion(const ros::Time& stamp, const std::string& frame, do
     if (!std::isfinite(c[i])) {
       char st[32];
       std::snprintf(st, sizeof st, "%.6f", stamp.toSec());
-      reject(field + "." + axis[i] + " = " + formatNumber(c[i]) + " (stamp " + st + "): must be finite");
+      reject(field + "." + axis[i] + " = " + formatNumber(c[i]) + " (stamp " + st + "): must be finite",
+             lockstep_keys::kNonFinite);
       return;
     }
   }
   if (stamp.isZero()) {
-    reject("header.stamp = 0: lockstep mode needs stamped motion");
+    reject("header.stamp = 0: lockstep mode needs stamped motion", lockstep_keys::kZeroStamp);
     return;
   }
   if (!frame.empty() && frame != frame_id_) {
@@ -219,7 +242,8 @@ void LockstepNode::onMotion(const ros::Time& stamp, const std::string& frame, do
       tf_buffer_->transform(in, out, frame_id_, ros::Duration(tf_timeout_));
     } catch (const tf2::TransformException& e) {
       reject("header.frame_id = \"" + frame + "\": no transform to \"" + frame_id_ + "\" (~frame_id) at stamp " +
-             formatNumber(stamp.toSec()) + ": " + e.what());
+                 formatNumber(stamp.toSec()) + ": " + e.what(),
+             lockstep_keys::kUnknownFrame);
       return;
     }
     x = out.point.x;
@@ -229,7 +253,7 @@ void LockstepNode::onMotion(const ros::Time& stamp, const std::string& frame, do
   // model: 2d: a fairlead off the plane y = 0 is dropped (lockstep.hpp); named here with its field.
   const std::string planar = driver_->planarError(y);
   if (!planar.empty()) {
-    reject(field + "." + planar + " (in " + frame_id_ + ")");
+    reject(field + "." + planar + " (in " + frame_id_ + ")", lockstep_keys::kOffPlane);
     return;
   }
   if (!have_epoch_) {
@@ -261,8 +285,9 @@ void LockstepNode::handle(const LockstepDriver::Result& r, const ros::Time& stam
     case LockstepDriver::Outcome::Reinitialised:
       ROS_WARN("mooring_dynamics: stamp %.6f: %s", stamp.toSec(), r.message.c_str());
       break;
+    case LockstepDriver::Outcome::Failed:
     case LockstepDriver::Outcome::RecoveredFailure:
-      ROS_ERROR("mooring_dynamics: stamp %.6f: %s", stamp.toSec(), r.message.c_str());
+      ROS_ERROR("mooring_dynamics: line %s, stamp %.6f: %s", problem_.name.c_str(), stamp.toSec(), r.message.c_str());
       break;
     case LockstepDriver::Outcome::Advanced:
       ROS_DEBUG("mooring_dynamics: stamp %.6f: solver t = %.3f s, %d steps, %d cuts, %d Newton iterations, %.1f ms",
@@ -395,6 +420,7 @@ bool LockstepNode::onSolveStatic(SolveStatic::Request& req, SolveStatic::Respons
   if (!top.ok) {
     toFailureResponse("invalid request: " + top.error, res);
     ROS_WARN("mooring_dynamics: ~solve_static rejected: %s", res.message.c_str());
+    monitor_->onRequestRejected(wallNow(), "~solve_static: " + res.message);
     return true;
   }
   core::Problem p = problem_;
@@ -407,6 +433,7 @@ bool LockstepNode::onSolveStatic(SolveStatic::Request& req, SolveStatic::Respons
     if (o.solver_ran) res.iterations = o.result.summary.iterations;
     ROS_WARN("mooring_dynamics: ~solve_static failed after %.0f ms (dynamic state unchanged): %s", ms,
              res.message.c_str());
+    monitor_->onRequestRejected(wallNow(), "~solve_static: " + res.message);
     return true;
   }
   toResponse(o.result, res);

@@ -24,7 +24,13 @@ VesselMonitor::VesselMonitor(std::vector<std::string> line_names, const VesselMo
       line_last_failure_(names_.size()),
       top_tension_(names_.size(), 0.0),
       max_top_tension_(names_.size(), 0.0),
-      last_motion_wall_(wall_now) {}
+      last_motion_wall_(wall_now) {
+  namespace k = vessel_keys;
+  tally_ = EventTally({k::kNonFinitePosition, k::kNonFiniteOrientation, k::kNonUnitOrientation, k::kBadTwist,
+                       k::kNonFiniteTime, k::kZeroStamp, k::kUnknownFrame, k::kSameStamp, k::kStampBack, k::kJump, k::kStartFailed,
+                       k::kRestartLoop, k::kRestartGap, k::kRestartJumps, k::kRestartReset, k::kRestartFailures,
+                       k::kFailedKept, k::kLinesRestarted, k::kRequestRejected});
+}
 
 void VesselMonitor::add(Counts& a, const Counts& b) {
   a.samples += b.samples;
@@ -57,20 +63,40 @@ void VesselMonitor::onMotionReceived(double wall_now) {
   ++window_.samples;
 }
 
-void VesselMonitor::onInputRejected(double, const std::string& message) {
+void VesselMonitor::onInputRejected(double, const std::string& message, const std::string& key) {
   ++window_.dropped;
+  tally_.count(key);
   last_drop_ = message;
   last_event_ = "dropped: " + message;
+}
+
+void VesselMonitor::onRequestRejected(double, const std::string& message) {
+  ++requests_rejected_;
+  tally_.count(vessel_keys::kRequestRejected);
+  last_request_ = message;
+  last_event_ = "request rejected: " + message;
 }
 
 void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, double wall_spent, double advanced,
                              const std::vector<double>* top_tension, double solver_time) {
   using O = core::VesselLockstep::Outcome;
+  using R = core::VesselLockstep::Reason;
+  namespace k = vessel_keys;
   solver_time_ = solver_time;
   window_.wall += wall_spent;
   switch (r.outcome) {
     case O::Dropped:
       ++window_.dropped;
+      tally_.count(r.reason == R::NonFinitePosition      ? k::kNonFinitePosition
+                   : r.reason == R::NonFiniteOrientation ? k::kNonFiniteOrientation
+                   : r.reason == R::NonUnitOrientation   ? k::kNonUnitOrientation
+                   : r.reason == R::BadTwist             ? k::kBadTwist
+                   : r.reason == R::NonFiniteTime        ? k::kNonFiniteTime
+                   : r.reason == R::SameStamp            ? k::kSameStamp
+                   : r.reason == R::StampBack            ? k::kStampBack
+                   : r.reason == R::Jump                 ? k::kJump
+                   : r.reason == R::StartFailed          ? k::kStartFailed
+                                                         : k::kOther);
       last_drop_ = r.message;
       last_event_ = "dropped: " + r.message;
       break;
@@ -79,13 +105,14 @@ void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, doub
       // Some lines (a group) failed and restarted alone from statics; the others went on.
       window_.sim += advanced;
       ++window_.failures;
+      tally_.count(k::kLinesRestarted);
       std::string names;
       for (std::size_t i : r.failed_lines) {
         if (i >= names_.size()) continue;
         names += (names.empty() ? "" : ", ") + names_[i];
         ++line_failures_window_[i];
         ++line_failures_total_[i];
-        line_last_failure_[i] = r.message;
+        line_last_failure_[i] = "restarted alone from statics: " + r.message;
       }
       last_failure_ = r.message;
       last_event_ = "line(s) " + names + " failed and restarted alone from statics; the others went on: " + r.message;
@@ -94,19 +121,32 @@ void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, doub
     case O::Started: last_event_ = "started" + (r.message.empty() ? std::string() : ": " + r.message); break;
     case O::Reinitialised:
       ++window_.restarts;
+      tally_.count(r.reason == R::LoopBack ? k::kRestartLoop
+                   : r.reason == R::Gap    ? k::kRestartGap
+                   : r.reason == R::Jumps  ? k::kRestartJumps
+                                           : k::kRestartReset);
       last_restart_ = r.message;
       last_event_ = "restarted from statics: " + r.message;
       break;
+    case O::Failed:
     case O::RecoveredFailure: {
       ++window_.failures;
+      window_.sim += advanced;
+      last_failure_kept_ = r.outcome == O::Failed;
+      tally_.count(last_failure_kept_ ? k::kFailedKept : k::kRestartFailures);
       last_failure_ = r.message;
       const int i = failedLine(r.message);
       last_event_ = (i >= 0 ? "line " + names_[static_cast<std::size_t>(i)] + " failed; " : std::string()) +
-                    "every line restarted from statics at the sample's pose: " + r.message;
+                    (last_failure_kept_ ? "the last good state is kept and published: "
+                                        : "every line restarted from statics at the sample's pose: ") +
+                    r.message;
       if (i >= 0) {
         ++line_failures_window_[static_cast<std::size_t>(i)];
         ++line_failures_total_[static_cast<std::size_t>(i)];
-        line_last_failure_[static_cast<std::size_t>(i)] = "every line restarted from statics at the sample's pose: " + r.message;
+        line_last_failure_[static_cast<std::size_t>(i)] =
+            (last_failure_kept_ ? "the last good state is kept and published: "
+                                : "every line restarted from statics at the sample's pose: ") +
+            r.message;
       }
       break;
     }
@@ -136,6 +176,9 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
                                       : "waiting for motion (none received yet)");
   if (w.dropped > 0) warnings.push_back(std::to_string(w.dropped) + " sample(s) dropped: " + last_drop_);
   if (w.restarts > 0) warnings.push_back(std::to_string(w.restarts) + " restart(s): " + last_restart_);
+  if (requests_rejected_ > 0)
+    warnings.push_back(std::to_string(requests_rejected_) + " service request(s) rejected: " + last_request_);
+  requests_rejected_ = 0;
   const double rtf = w.wall > 0.0 ? w.sim / w.wall : 0.0;
   if (w.sim > 0.0 && rtf < options_.min_real_time_factor)
     warnings.push_back("real-time factor " + fmt(rtf, "%.2f") + " < " + fmt(options_.min_real_time_factor, "%g"));
@@ -158,6 +201,7 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
   kv(s, "samples dropped", std::to_string(total_.dropped));
   kv(s, "restarts (window / total)", std::to_string(w.restarts) + " / " + std::to_string(total_.restarts));
   kv(s, "line failures (window / total)", std::to_string(w.failures) + " / " + std::to_string(total_.failures));
+  tally_.closeWindow(s.values);
   kv(s, "seconds since last motion [s]", ever_received_ ? fmt(quiet, "%.3g") : "-");
   kv(s, "last event", last_event_.empty() ? "none" : last_event_);
   out.push_back(s);

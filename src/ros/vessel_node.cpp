@@ -86,6 +86,8 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   lo.max_gap = doubleParam(pnh_, "max_gap", lo.max_gap, [](double) { return true; }, "");
   lo.max_speed = doubleParam(pnh_, "max_speed", lo.max_speed, [](double) { return true; }, "");
   lo.jumps_to_reinit = intParam(pnh_, "jumps_to_reinit", lo.jumps_to_reinit, 1, "must be >= 1");
+  lo.failures_to_reinit = intParam(pnh_, "failures_to_reinit", lo.failures_to_reinit, 1, "must be >= 1");
+  pnh_.param<bool>("restart_failed_lines", lo.restart_failed_lines, lo.restart_failed_lines);
 
   VesselMonitorOptions mo;
   mo.motion_timeout = doubleParam(pnh_, "motion_timeout", mo.motion_timeout, [](double v) { return v > 0.0; },
@@ -225,16 +227,16 @@ void VesselNode::pollTf(const ros::WallTimerEvent&) {
   onMotion(tr.header.stamp, frame_id_, p, "transform");
 }
 
-void VesselNode::reject(const std::string& message) {
+void VesselNode::reject(const std::string& message, const char* key) {
   ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: vessel pose dropped: %s; state kept", message.c_str());
-  monitor_->onInputRejected(wallNow(), message);
+  monitor_->onInputRejected(wallNow(), message, key);
 }
 
 void VesselNode::onMotion(const ros::Time& stamp, const std::string& frame, const geometry_msgs::Pose& pose_in,
                           const std::string& field, const core::BodyTwist* twist) {
   monitor_->onMotionReceived(wallNow());
   if (stamp.isZero()) {
-    reject("header.stamp = 0: lockstep mode needs stamped poses");
+    reject("header.stamp = 0: lockstep mode needs stamped poses", vessel_keys::kZeroStamp);
     return;
   }
   geometry_msgs::Pose pose = pose_in;
@@ -247,7 +249,8 @@ void VesselNode::onMotion(const ros::Time& stamp, const std::string& frame, cons
       tf_buffer_->transform(in, out, frame_id_, ros::Duration(tf_timeout_));
     } catch (const tf2::TransformException& e) {
       reject("header.frame_id = \"" + frame + "\": no transform to \"" + frame_id_ + "\" (~frame_id) at stamp " +
-             formatNumber(stamp.toSec()) + ": " + e.what());
+                 formatNumber(stamp.toSec()) + ": " + e.what(),
+             vessel_keys::kUnknownFrame);
       return;
     }
     pose = out.pose;
@@ -292,6 +295,7 @@ void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& 
     case O::Reinitialised:
       ROS_WARN("mooring_dynamics: stamp %.6f: restarted from statics: %s", stamp.toSec(), r.message.c_str());
       break;
+    case O::Failed:  // the last good state is published again, converged false (not this stamp's)
     case O::RecoveredFailure:
     case O::LinesRestarted:
       ROS_ERROR("mooring_dynamics: stamp %.6f: %s", stamp.toSec(), monitor_->lastEvent().c_str());
@@ -300,6 +304,7 @@ void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& 
       ROS_DEBUG("mooring_dynamics: stamp %.6f: solver t = %.3f s, %.1f ms", stamp.toSec(), lockstep_->solverTime(), ms);
       break;
   }
+  failed_sample_ = r.outcome == O::Failed;
   if (r.publish) publish(stamp);
 }
 
@@ -311,8 +316,11 @@ void VesselNode::publish(const ros::Time& stamp) {
   for (const core::FairleadForce& f : w.fairleads)
     if (f.line < fairlead_pubs_.size() && fairlead_pubs_[f.line])
       fairlead_pubs_[f.line].publish(toFairleadWrench(f, pose, frame_id_, stamp));
-  for (std::size_t i = 0; i < system_.lines.size(); ++i)
-    state_pubs_[i].publish(toCableState(lockstep_->dynamics().line(i), system_.lines[i].name, frame_id_, stamp));
+  for (std::size_t i = 0; i < system_.lines.size(); ++i) {
+    CableState cs = toCableState(lockstep_->dynamics().line(i), system_.lines[i].name, frame_id_, stamp);
+    cs.converged = !failed_sample_;
+    state_pubs_[i].publish(cs);
+  }
   have_output_ = true;
   last_stamp_ = stamp;
   publishMarkersAndFrames(stamp);
@@ -406,6 +414,7 @@ bool VesselNode::onSolveStatic(VesselStatics::Request& req, VesselStatics::Respo
     res.success = false;
     res.message = "invalid request: " + q.error;
     ROS_WARN("mooring_dynamics: ~solve_static rejected: %s", res.message.c_str());
+    monitor_->onRequestRejected(wallNow(), "~solve_static: " + res.message);
     return true;
   }
   const ros::WallTime t0 = ros::WallTime::now();
@@ -425,6 +434,7 @@ bool VesselNode::onSolveStatic(VesselStatics::Request& req, VesselStatics::Respo
     res = VesselStatics::Response();
     res.success = false;
     res.message = q.summary + ": " + e.what();
+    monitor_->onRequestRejected(wallNow(), "~solve_static: " + res.message);
   }
   const double ms = (ros::WallTime::now() - t0).toSec() * 1000.0;
   ROS_INFO("mooring_dynamics: ~solve_static, %.0f ms (dynamic run untouched): %s", ms, res.message.c_str());

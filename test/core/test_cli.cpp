@@ -569,6 +569,40 @@ TEST_F(CliTest, TwoDimensionalModelRejectsYAndSaysWhy) {
   EXPECT_NE(r.err.find("model: 3d"), std::string::npos) << r.err;
 }
 
+// A system whose line step fails at its smallest cut stops as a single line's run does: the
+// samples up to the last good state are written, dynamic_summary.json says "completed": false, the
+// exit code is 4 and stderr says where it stopped. Forced: the three-leg buoy in 4 m waves with 2
+// Newton iterations per step and no step cutting, which the first seconds (waves ramped in over
+// 6 s) still converge and a full wave does not.
+TEST_F(CliTest, SystemDynamicRunThatStopsExitsFourAndWritesUpToTheLastGoodState) {
+  std::string text = readText("config/three_leg_buoy.yaml");
+  text = text.substr(0, text.find("\ndynamics:") + 1);
+  const std::string wind = "  wind: {speed: 10, direction_deg: 45}";
+  ASSERT_NE(text.find(wind), std::string::npos);
+  text.replace(text.find(wind), wind.size(), wind + "\n  waves: {type: regular, height: 4, period: 6, ramp: 6}");
+  text += "dynamics: {duration: 10, dt: 0.5, max_iterations: 2, max_cut_levels: 0}\n";
+  const fs::path out = dir_ / "stop";
+  const RunResult r = run({"dynamic", file("stop_system.yaml", text).string(), "--out", out.string()});
+  EXPECT_EQ(r.code, 4) << r.out << r.err;
+  EXPECT_NE(r.out.find("system dynamic run STOPPED"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line leg_"), std::string::npos) << "names the failed line: " << r.out;
+  const std::string ts = readText(out / "system_timeseries.csv");
+  const std::size_t rows = countLines(ts) - 1;
+  EXPECT_GE(rows, 2u) << "the start and at least one good sample:\n" << ts;
+  EXPECT_LT(rows, 21u) << "not the whole run:\n" << ts;
+  // The last row written is the last good state; stdout, stderr and the summary give its time.
+  std::string last = ts.substr(0, ts.size() - 1);
+  last = last.substr(last.rfind('\n') + 1);
+  const std::string t_last = last.substr(0, last.find(','));
+  EXPECT_DOUBLE_EQ(std::stod(t_last), 0.5 * static_cast<double>(rows - 1)) << "samples every dt from 0:\n" << ts;
+  EXPECT_NE(r.out.find("last good      t = " + t_last + " s"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("stopped at t = " + t_last + " s of 10 s"), std::string::npos) << r.err;
+  const std::string js = readText(out / "dynamic_summary.json");
+  EXPECT_NE(js.find("\"completed\": false"), std::string::npos) << js;
+  EXPECT_NE(js.find("\"simulated_time\": " + t_last + ","), std::string::npos) << js;
+  EXPECT_NE(js.find("\"kind\": \"system\""), std::string::npos) << js;
+}
+
 TEST_F(CliTest, SystemFileStaticWritesEveryLine) {
   const fs::path out = dir_ / "sys";
   const RunResult r = run({"static", "config/three_leg_buoy.yaml", "--out", out.string()});

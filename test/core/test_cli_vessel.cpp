@@ -144,3 +144,44 @@ TEST_F(CliVessel, DynamicRunFollowsTheTableWithTheSameBitsOnOneAndTwoThreads) {
   EXPECT_EQ(bad.code, 3);
   EXPECT_NE(bad.err.find("column y = \"abc\""), std::string::npos) << bad.err;
 }
+
+// A step that fails at its smallest cut (4 Newton iterations, no cutting: the forced failure) stops
+// the run as it stops a single line's: the series up to the last good sample is written, the
+// summary says "completed": false, and the exit code is 4 (README, "Exit codes").
+TEST_F(CliVessel, DynamicRunThatStopsExitsFourAndWritesUpToTheLastGoodSample) {
+  std::string text = kVessel;
+  text.replace(text.find("dynamics: {dt: 0.25, lambda_inf: -0.5}"), 38,
+               "dynamics: {dt: 0.25, lambda_inf: -0.5, max_iterations: 4, max_cut_levels: 0}");
+  std::ofstream(dir_ / "vessel.yaml") << text;
+  {
+    // The table of SetUp, but the vessel lurches 5 m at t = 2.25 s (20 m/s: under max_speed, so
+    // it reaches the lines).
+    std::ofstream m(dir_ / "motion.csv");
+    m << "t,x,y,z,qx,qy,qz,qw\n";
+    for (int k = 0; k <= 16; ++k) {
+      const double t = 0.25 * k, s = t / 4.0 + (k >= 9 ? 5.0 : 0.0);
+      m << t << "," << s << ",0,0,0,0,0,1\n";
+    }
+  }
+  const RunResult r = run({"dynamic", file(), "--out", (dir_ / "o").string(), "--no-progress"});
+  EXPECT_EQ(r.code, 4) << r.out << r.err;
+  EXPECT_NE(r.out.find("vessel dynamic run STOPPED"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("last good      t = 2 s"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line fwd"), std::string::npos) << "names the failed line: " << r.out;
+  EXPECT_NE(r.err.find("stopped at t = 2 s"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\"completed\": false"), std::string::npos) << r.err;
+  const std::string ts = readText(dir_ / "o" / "vessel_timeseries.csv");
+  std::istringstream lines(ts);
+  std::string line, last;
+  int n = 0;
+  while (std::getline(lines, line)) {
+    ++n;
+    last = line;
+  }
+  EXPECT_EQ(n, 1 + 9) << "header and t = 0 ... 2 s:\n" << ts;
+  EXPECT_EQ(last.rfind("2,", 0), 0u) << last;
+  const std::string js = readText(dir_ / "o" / "dynamic_summary.json");
+  EXPECT_NE(js.find("\"completed\": false"), std::string::npos) << js;
+  EXPECT_NE(js.find("\"simulated_time\": 2,"), std::string::npos) << js;
+  EXPECT_NE(js.find("\"kind\": \"vessel\""), std::string::npos) << js;
+}

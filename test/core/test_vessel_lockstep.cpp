@@ -128,3 +128,84 @@ TEST(VesselLockstep, AFailedLineRestartsAloneAndIsNamed) {
   }
   EXPECT_TRUE(seen);
 }
+
+// A line whose step fails at its smallest cut: the last good state is kept (every line restored
+// to the last converged step) and published (Failed, the line named); the next sample continues
+// from it; failures_to_reinit failures in a row restart from statics at the sample's pose. The
+// policy of a run that does not restart failed lines alone (restart_failed_lines false, cable_sim).
+// Forced: 4 Newton iterations per step and no step cutting, which a gentle surge needs at most 3
+// of and a 5 m lurch in one step cannot do; max_speed 0 lets the lurch through.
+TEST(VesselLockstep, AFailedStepKeepsTheLastGoodStateAndContinues) {
+  using O = VesselLockstep::Outcome;
+  DynamicOptions o = options();
+  o.max_iterations = 4;
+  o.max_cut_levels = 0;
+  VesselLockstepOptions lo;
+  lo.max_speed = 0.0;
+  lo.failures_to_reinit = 3;
+  lo.restart_failed_lines = false;
+  VesselLockstep run(fourLegVessel(10.0), o, lo);
+  ASSERT_EQ(run.onSample(0.0, surged(0.0)).outcome, O::Started);
+  ASSERT_EQ(run.onSample(0.25, surged(0.01)).outcome, O::Advanced);
+  const VesselWrench before = run.wrench();
+  const std::vector<StaticResult> lines_before = run.lines();
+
+  const auto f = run.onSample(0.5, surged(5.0));
+  EXPECT_EQ(f.outcome, O::Failed) << f.message;
+  EXPECT_EQ(f.reason, VesselLockstep::Reason::SolverFailed);
+  EXPECT_TRUE(f.publish);
+  EXPECT_NE(f.message.find("line "), std::string::npos) << f.message;
+  EXPECT_NE(f.message.find("last good state"), std::string::npos) << f.message;
+  // One base step per sample and no cutting: nothing converged, so the kept state is the last
+  // sample's, bit for bit.
+  EXPECT_EQ(run.solverTime(), 0.25);
+  EXPECT_EQ(run.lastTime(), 0.25);
+  EXPECT_EQ(run.wrench().force_world, before.force_world);
+  EXPECT_EQ(run.wrench().moment_world, before.moment_world);
+  const std::vector<StaticResult> lines_kept = run.lines();
+  ASSERT_EQ(lines_kept.size(), lines_before.size());
+  for (std::size_t i = 0; i < lines_kept.size(); ++i)
+    for (std::size_t j = 0; j < lines_kept[i].nodes.size(); ++j)
+      ASSERT_EQ(lines_kept[i].nodes[j].tension, lines_before[i].nodes[j].tension) << i << " " << j;
+
+  // The next gentle sample continues from it (over 0.25 -> 0.75 s).
+  const auto a = run.onSample(0.75, surged(0.02));
+  EXPECT_EQ(a.outcome, O::Advanced) << a.message;
+  EXPECT_EQ(run.solverTime(), 0.75);
+
+  // Three lurches in a row: kept, kept, then restarted from statics at the third pose.
+  EXPECT_EQ(run.onSample(1.0, surged(5.0)).outcome, O::Failed);
+  EXPECT_EQ(run.onSample(1.25, surged(5.0)).outcome, O::Failed);
+  const auto r = run.onSample(1.5, surged(5.0));
+  EXPECT_EQ(r.outcome, O::RecoveredFailure) << r.message;
+  EXPECT_EQ(r.reason, VesselLockstep::Reason::SolverFailed);
+  EXPECT_EQ(run.solverTime(), 0.0);
+  const VesselStaticResult st = solveVesselStatic(fourLegVessel(10.0), surged(5.0));
+  EXPECT_NEAR((run.wrench().force_world - st.wrench.force_world).norm(), 0.0,
+              1e-6 * std::abs(st.wrench.force_world.z()));
+}
+
+TEST(VesselLockstep, ReasonsOfDropsAndRestarts) {
+  using R = VesselLockstep::Reason;
+  VesselLockstep run(fourLegVessel(10.0), options());
+  EXPECT_EQ(run.onSample(10.0, surged(0.0)).reason, R::None);
+  RigidPose p = surged(0.0);
+  p.position.x() = std::nan("");
+  EXPECT_EQ(run.onSample(10.5, p).reason, R::NonFinitePosition);
+  p = surged(0.0);
+  p.orientation.w() = INFINITY;
+  EXPECT_EQ(run.onSample(10.5, p).reason, R::NonFiniteOrientation);
+  p = surged(0.0);
+  p.orientation.coeffs().setZero();
+  EXPECT_EQ(run.onSample(10.5, p).reason, R::NonUnitOrientation);
+  EXPECT_EQ(run.onSample(std::nan(""), surged(0.0)).reason, R::NonFiniteTime);
+  const BodyTwist bad_twist{Eigen::Vector3d(std::nan(""), 0.0, 0.0), Eigen::Vector3d::Zero()};
+  EXPECT_EQ(run.onSample(10.5, surged(0.0), &bad_twist).reason, R::BadTwist);
+  EXPECT_EQ(run.onSample(10.0, surged(0.0)).reason, R::SameStamp);
+  EXPECT_EQ(run.onSample(9.5, surged(0.0)).reason, R::StampBack);
+  EXPECT_EQ(run.onSample(10.25, surged(100.0)).reason, R::Jump);
+  EXPECT_EQ(run.onSample(1e6, surged(0.0)).reason, R::Gap);       // far in the future: a gap
+  EXPECT_EQ(run.onSample(10.5, surged(0.0)).reason, R::LoopBack);  // and back: a bag loop
+  EXPECT_EQ(run.reset().reason, R::Reset);
+  EXPECT_EQ(run.dropped(), 8);
+}

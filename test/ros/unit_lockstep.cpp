@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 
 #include "mooring_dynamics/core/io/problem_io.hpp"
@@ -115,6 +116,176 @@ TEST(LockstepDriver, BadSamples) {
   EXPECT_EQ(d.onSample(0.1, kTopX, 0.0, kTopZ).outcome, O::Dropped);   // same stamp
   EXPECT_EQ(d.onSample(-0.5, kTopX, 0.0, kTopZ).outcome, O::Dropped);  // back by 0.6 s
   EXPECT_EQ(d.onSample(-1.5, kTopX, 0.0, kTopZ).outcome, O::Reinitialised);  // back by 1.6 s: bag loop
+}
+
+namespace {
+
+/// The real 2-D solver behind a switch: while `fail_from` is set, advanceTo goes only halfway
+/// (the last converged step of a failing advance) and reports a failure, as the core does when a
+/// step fails at its smallest cut (it keeps the last converged step).
+struct FailSwitch {
+  bool on = false;
+};
+class HalfwayFailingSolver final : public ros_bridge::LockstepSolver {
+ public:
+  HalfwayFailingSolver(std::unique_ptr<ros_bridge::LockstepSolver> s, std::shared_ptr<FailSwitch> sw)
+      : s_(std::move(s)), sw_(std::move(sw)) {}
+  const core::StaticResult& initialStatic() const override { return s_->initialStatic(); }
+  void setTopSegment(double t0, double x0, double y0, double z0, double t1, double x1, double y1, double z1) override {
+    s_->setTopSegment(t0, x0, y0, z0, t1, x1, y1, z1);
+  }
+  core::StepReport advanceTo(double t) override {
+    if (!sw_->on) return s_->advanceTo(t);
+    const double half = s_->time() + 0.5 * (t - s_->time());
+    core::StepReport r = s_->advanceTo(half);
+    r.ok = false;
+    r.message = "t = " + std::to_string(t) + " s: forced failure (test)";
+    return r;
+  }
+  core::StaticResult snapshot() const override { return s_->snapshot(); }
+  double time() const override { return s_->time(); }
+
+ private:
+  std::unique_ptr<ros_bridge::LockstepSolver> s_;
+  std::shared_ptr<FailSwitch> sw_;
+};
+
+ros_bridge::LockstepSolverFactory failingFactory(std::shared_ptr<FailSwitch> sw) {
+  return [sw](const core::Problem& p) -> std::unique_ptr<ros_bridge::LockstepSolver> {
+    return std::make_unique<HalfwayFailingSolver>(ros_bridge::makeSolver2D()(p), sw);
+  };
+}
+
+}  // namespace
+
+// A failing sample keeps the last good state (the solver's last converged step, halfway here),
+// publishes it with converged false, and the next sample continues from it: the top moves on
+// from where the failed segment had it at that step.
+TEST(LockstepDriver, FailureKeepsTheLastGoodStateAndContinues) {
+  auto sw = std::make_shared<FailSwitch>();
+  ros_bridge::LockstepOptions o;
+  LockstepDriver d(problem(), kDt, o, failingFactory(sw));
+  ASSERT_EQ(d.onSample(0.0, kTopX, 0.0, kTopZ).outcome, O::Started);
+  ASSERT_EQ(d.onSample(0.1, kTopX, 0.0, kTopZ + 0.1).outcome, O::Advanced);
+  sw->on = true;
+  const auto f = d.onSample(0.3, kTopX, 0.0, kTopZ + 0.3);
+  EXPECT_EQ(f.outcome, O::Failed);
+  EXPECT_EQ(f.reason, LockstepDriver::Reason::SolverFailed);
+  EXPECT_TRUE(f.publish);
+  EXPECT_FALSE(f.report.ok);
+  EXPECT_NE(f.message.find("forced failure"), std::string::npos) << f.message;
+  EXPECT_NE(f.message.find("last good state"), std::string::npos) << f.message;
+  EXPECT_FALSE(d.state().summary.converged);
+  // The kept state is the solver's at its last converged time 0.2 s (halfway through 0.1 -> 0.3):
+  // the same bits as the solver run without the driver on the same segments to 0.2 s.
+  EXPECT_NEAR(d.solverTime(), 0.2, 1e-12);
+  {
+    auto ref = ros_bridge::makeSolver2D()(d.problem());
+    const double x0 = ref->initialStatic().nodes.back().x, z0 = ref->initialStatic().nodes.back().z;
+    ref->setTopSegment(0.0, x0, 0.0, z0, 0.1, kTopX, 0.0, kTopZ + 0.1);
+    ASSERT_TRUE(ref->advanceTo(0.1).ok);
+    ref->setTopSegment(0.1, kTopX, 0.0, kTopZ + 0.1, 0.3, kTopX, 0.0, kTopZ + 0.3);
+    ASSERT_TRUE(ref->advanceTo(0.2).ok);
+    const core::StaticResult want = ref->snapshot();
+    ASSERT_EQ(want.nodes.size(), d.state().nodes.size());
+    for (std::size_t j = 0; j < want.nodes.size(); ++j) {
+      ASSERT_EQ(d.state().nodes[j].z, want.nodes[j].z) << j;
+      ASSERT_EQ(d.state().nodes[j].tension, want.nodes[j].tension) << j;
+    }
+  }
+  for (const auto& n : d.state().nodes) ASSERT_TRUE(std::isfinite(n.tension) && std::isfinite(n.x) && std::isfinite(n.z));
+  sw->on = false;
+  const auto a = d.onSample(0.4, kTopX, 0.0, kTopZ + 0.4);
+  EXPECT_EQ(a.outcome, O::Advanced) << a.message;
+  EXPECT_NEAR(a.advanced, 0.2, 1e-12) << "from the last good state at 0.2 s to 0.4 s";
+  EXPECT_TRUE(d.state().summary.converged);
+  EXPECT_NEAR(d.solverTime(), 0.4, 1e-12);
+}
+
+// failures_to_reinit failures in a row: statics re-solved at the sample (RecoveredFailure); a
+// success in between resets the count.
+TEST(LockstepDriver, RepeatedFailuresReinitialise) {
+  auto sw = std::make_shared<FailSwitch>();
+  ros_bridge::LockstepOptions o;
+  o.failures_to_reinit = 3;
+  LockstepDriver d(problem(), kDt, o, failingFactory(sw));
+  ASSERT_EQ(d.onSample(0.0, kTopX, 0.0, kTopZ).outcome, O::Started);
+  sw->on = true;
+  EXPECT_EQ(d.onSample(0.1, kTopX, 0.0, kTopZ).outcome, O::Failed);
+  EXPECT_EQ(d.onSample(0.2, kTopX, 0.0, kTopZ).outcome, O::Failed);
+  sw->on = false;
+  EXPECT_EQ(d.onSample(0.3, kTopX, 0.0, kTopZ).outcome, O::Advanced);
+  sw->on = true;
+  EXPECT_EQ(d.onSample(0.4, kTopX, 0.0, kTopZ).outcome, O::Failed);
+  EXPECT_EQ(d.onSample(0.5, kTopX, 0.0, kTopZ).outcome, O::Failed);
+  const auto r = d.onSample(0.6, kTopX + 0.5, 0.0, kTopZ);
+  EXPECT_EQ(r.outcome, O::RecoveredFailure) << r.message;
+  EXPECT_TRUE(r.publish);
+  EXPECT_NEAR(d.state().nodes.back().x, kTopX + 0.5, 1e-9) << "statics re-solved with the top at the sample";
+  EXPECT_TRUE(d.state().summary.converged);
+  EXPECT_NEAR(d.solverTime(), 0.0, 1e-12);
+}
+
+TEST(LockstepDriver, ReasonsOfDropsAndReinitialisations) {
+  using R = LockstepDriver::Reason;
+  ros_bridge::LockstepOptions o;
+  o.max_gap = 2.0;
+  LockstepDriver d(problem(), kDt, o);
+  EXPECT_EQ(d.onSample(0.0, kTopX, 0.0, kTopZ).reason, R::None);
+  EXPECT_EQ(d.onSample(0.1, kTopX, 0.0, kTopZ).reason, R::None);
+  EXPECT_EQ(d.onSample(0.1, kTopX, 0.0, kTopZ).reason, R::SameStamp);
+  EXPECT_EQ(d.onSample(0.05, kTopX, 0.0, kTopZ).reason, R::StampBack);
+  EXPECT_EQ(d.onSample(0.2, std::nan(""), 0.0, kTopZ).reason, R::NonFinite);
+  EXPECT_EQ(d.onSample(0.2, kTopX, 0.5, kTopZ).reason, R::OffPlane);
+  EXPECT_EQ(d.onSample(0.2, kTopX + 50.0, 0.0, kTopZ).reason, R::Jump);
+  const auto gap = d.onSample(1e6, kTopX, 0.0, kTopZ);  // a stamp far in the future: a gap
+  EXPECT_EQ(gap.outcome, O::Reinitialised);
+  EXPECT_EQ(gap.reason, R::Gap);
+  const auto back = d.onSample(0.3, kTopX, 0.0, kTopZ);  // and back again: a bag loop
+  EXPECT_EQ(back.outcome, O::Reinitialised);
+  EXPECT_EQ(back.reason, R::LoopBack);
+  EXPECT_EQ(d.reset().reason, R::Request);
+  const auto far = d.onSample(0.4, 1e4, 0.0, 0.0);  // out of reach, three times: the restart fails
+  EXPECT_EQ(far.reason, R::Jump);
+  d.onSample(0.5, 1e4, 0.0, 0.0);
+  const auto third = d.onSample(0.6, 1e4, 0.0, 0.0);
+  EXPECT_EQ(third.reason, R::StartFailed);
+  EXPECT_TRUE(third.start_failed);
+}
+
+TEST(LockstepMonitor, FailureNamesTheLineAndCountsByReason) {
+  ros_bridge::MonitorOptions mo;
+  mo.motion_timeout = 100.0;
+  mo.line_name = "tether";
+  LockstepMonitor m(mo, 0.0);
+  auto sw = std::make_shared<FailSwitch>();
+  LockstepDriver d(problem(), kDt, ros_bridge::LockstepOptions(), failingFactory(sw));
+  m.onResult(d.onSample(0.0, kTopX, 0.0, kTopZ), 0.1, 0.0, &d.state(), d.solverTime());
+  m.onResult(d.onSample(0.0, kTopX, 0.0, kTopZ), 0.1, 0.0, nullptr, d.solverTime());  // same stamp
+  m.onInputRejected(0.1, "header.stamp = 0", ros_bridge::lockstep_keys::kZeroStamp);
+  m.onInputNote(0.1, "pose.orientation: norm 0 (unused)", ros_bridge::lockstep_keys::kOrientationNonUnit, false);
+  m.onRequestRejected(0.1, "~solve_static: invalid request: top_position.x = nan: must be finite");
+  sw->on = true;
+  const auto f = d.onSample(0.1, kTopX, 0.0, kTopZ);
+  m.onResult(f, 0.2, 0.0, &d.state(), d.solverTime());
+  const auto s = m.summarise(0.3);
+  EXPECT_EQ(s.level, LockstepMonitor::ERROR);
+  EXPECT_EQ(s.message.find("1 solver failure(s) on line tether"), 0u) << s.message;
+  EXPECT_NE(s.message.find("last good state"), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("service request"), std::string::npos) << s.message;
+  auto value = [&s](const std::string& k) {
+    for (const auto& kv : s.values)
+      if (kv.first == k) return kv.second;
+    return std::string("missing");
+  };
+  EXPECT_EQ(value("dropped: same stamp (window / total)"), "1 / 1");
+  EXPECT_EQ(value("dropped: zero stamp (window / total)"), "1 / 1");
+  EXPECT_EQ(value("accepted: non-unit orientation (unused)" + std::string(" (window / total)")), "1 / 1");
+  EXPECT_EQ(value("service requests rejected (window / total)"), "1 / 1");
+  EXPECT_EQ(value("solver failed: last good state kept (window / total)"), "1 / 1");
+  EXPECT_EQ(value("dropped: jump (window / total)"), "0 / 0");
+  EXPECT_EQ(value("solver failures (window / total)"), "1 / 1");
+  EXPECT_NE(value("last error").find("line tether"), std::string::npos) << value("last error");
 }
 
 TEST(LockstepMonitor, Levels) {

@@ -232,4 +232,58 @@ TEST(VesselMonitor, ALineRestartedAloneIsNamedTheOthersStayOk) {
   EXPECT_EQ(valueOf(s[2], "converged"), "false");
   EXPECT_NE(s[2].message.find("failure injected"), std::string::npos) << s[2].message;
   EXPECT_EQ(s[3].level, rb::VesselMonitor::OK);
+  EXPECT_EQ(valueOf(s[0], "line failed: restarted alone (window / total)"), "1 / 1");
+  EXPECT_EQ(valueOf(s[0], "line failed: last good state kept (window / total)"), "0 / 0");
+}
+
+// A failed sample that kept the last good state (VesselLockstep::Outcome::Failed): ERROR naming the
+// line, the overall and the line's message say the state is kept, and the causes are counted apart.
+TEST(VesselMonitor, KeptStateAfterAFailureAndCountsByCause) {
+  rb::VesselMonitorOptions o;
+  o.motion_timeout = 100.0;
+  rb::VesselMonitor m({"bow", "stern"}, o, 0.0);
+  using O = core::VesselLockstep::Outcome;
+  using R = core::VesselLockstep::Reason;
+  const std::vector<double> top{1.0, 2.0};
+  core::VesselLockstep::Result r;
+  r.outcome = O::Started;
+  r.publish = true;
+  m.onResult(r, 0.1, 0.0, 0.0, &top, 0.0);
+  for (R reason : {R::NonFiniteOrientation, R::NonUnitOrientation, R::NonUnitOrientation, R::SameStamp, R::Jump}) {
+    core::VesselLockstep::Result d;
+    d.reason = reason;
+    d.message = "bad";
+    m.onResult(d, 0.2, 0.0, 0.0, nullptr, 0.0);
+  }
+  m.onInputRejected(0.2, "header.stamp = 0", rb::vessel_keys::kZeroStamp);
+  m.onRequestRejected(0.2, "~solve_static: invalid request: offset_steps = 0");
+  core::VesselLockstep::Result f;
+  f.outcome = O::Failed;
+  f.reason = R::SolverFailed;
+  f.publish = true;
+  f.message = "t = 1 s: line stern: did not converge; the last good state (t = 0.9 s) is kept";
+  m.onResult(f, 0.3, 0.0, 0.0, &top, 0.9);
+  const std::vector<rb::VesselMonitor::Status> s = m.summarise(0.4);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s[0].level, rb::VesselMonitor::ERROR);
+  EXPECT_NE(s[0].message.find("line stern failed; the last good state is kept and published"), std::string::npos)
+      << s[0].message;
+  EXPECT_NE(s[0].message.find("service request"), std::string::npos) << s[0].message;
+  EXPECT_EQ(s[2].level, rb::VesselMonitor::ERROR);
+  EXPECT_NE(s[2].message.find("last good state is kept"), std::string::npos) << s[2].message;
+  EXPECT_EQ(s[1].level, rb::VesselMonitor::OK);
+  EXPECT_EQ(valueOf(s[0], "dropped: non-finite orientation (window / total)"), "1 / 1");
+  EXPECT_EQ(valueOf(s[0], "dropped: non-unit orientation (window / total)"), "2 / 2");
+  EXPECT_EQ(valueOf(s[0], "dropped: same stamp (window / total)"), "1 / 1");
+  EXPECT_EQ(valueOf(s[0], "dropped: jump (window / total)"), "1 / 1");
+  EXPECT_EQ(valueOf(s[0], "dropped: zero stamp (window / total)"), "1 / 1");
+  EXPECT_EQ(valueOf(s[0], "dropped: stamp back (window / total)"), "0 / 0");
+  EXPECT_EQ(valueOf(s[0], "service requests rejected (window / total)"), "1 / 1");
+  EXPECT_EQ(valueOf(s[0], "line failed: last good state kept (window / total)"), "1 / 1");
+  EXPECT_EQ(valueOf(s[0], "restarted: line failures (window / total)"), "0 / 0");
+  EXPECT_EQ(valueOf(s[0], "samples dropped"), "6");
+  // The next window: the totals stay, the window counts restart.
+  const std::vector<rb::VesselMonitor::Status> n = m.summarise(0.5);
+  EXPECT_EQ(valueOf(n[0], "dropped: non-unit orientation (window / total)"), "0 / 2");
+  EXPECT_EQ(n[2].level, rb::VesselMonitor::OK);
 }

@@ -29,7 +29,11 @@
 //    sample (the motion in between is unknown).
 //  * a jump implying a top speed above `max_speed`: dropped; `jumps_to_reinit` such samples in a
 //    row (the source really moved, e.g. a simulator reset): re-initialised at the new position.
-//  * solver failure: re-initialised from statics with the top at the sample's position.
+//  * solver failure (a step fails even at the smallest cut): the last good state is kept (the
+//    solver stays at its last converged step) and published for this sample with converged
+//    false; the next sample continues from it, the top moving on from where it was at that
+//    step. `failures_to_reinit` failures in a row: re-initialised from statics with the top at
+//    the sample's position.
 //  * reset(): re-initialised from statics at the last accepted top position (service ~reset);
 //    reinitialiseAt(x, y, z): the same with the top at (x, y, z) (service ~solve_static with
 //    reinitialise).
@@ -95,6 +99,7 @@ struct LockstepOptions {
   double max_gap = 5.0;           ///< [s] a sample later than this after the last accepted one re-initialises; <= 0: never
   double max_speed = 50.0;        ///< [m/s] a jump implying a faster top is dropped; <= 0: no check
   int jumps_to_reinit = 3;        ///< this many jumps in a row re-initialise at the new position
+  int failures_to_reinit = 3;     ///< this many solver failures in a row re-initialise from statics at the sample
 };
 
 class LockstepDriver {
@@ -103,11 +108,28 @@ class LockstepDriver {
     Started,          ///< first sample: solver (re)built, state = static start; publish
     Advanced,         ///< solver advanced to the sample's time; publish
     Reinitialised,    ///< time jumped back (bag loop), a long gap, repeated jumps, reset: rebuilt from statics; publish
-    RecoveredFailure, ///< solver failed; rebuilt from statics at this sample; publish
+    Failed,           ///< solver failed at the smallest cut; the last good state kept and published (converged false)
+    RecoveredFailure, ///< failures_to_reinit failures in a row: rebuilt from statics at this sample; publish
     Dropped,          ///< sample ignored (non-finite, time not increasing, jump, cannot start); state kept
+  };
+  /// Why a sample was dropped or the run re-initialised (counted separately in /diagnostics).
+  enum class Reason {
+    None,
+    NonFinite,    ///< Dropped: a non-finite time or coordinate
+    OffPlane,     ///< Dropped: model: 2d and |y| > kPlanarTolerance
+    SameStamp,    ///< Dropped: the stamp of the last accepted sample again
+    StampBack,    ///< Dropped: a stamp back by at most loop_back
+    Jump,         ///< Dropped: faster than max_speed
+    StartFailed,  ///< Dropped: statics could not be solved at the sample's top
+    LoopBack,     ///< Reinitialised: back by more than loop_back (bag loop)
+    Gap,          ///< Reinitialised: a gap over max_gap
+    Jumps,        ///< Reinitialised: jumps_to_reinit jumps in a row
+    Request,      ///< Reinitialised: reset() / reinitialiseAt()
+    SolverFailed, ///< Failed / RecoveredFailure
   };
   struct Result {
     Outcome outcome = Outcome::Dropped;
+    Reason reason = Reason::None;
     bool publish = false;           ///< a new state is available (state())
     bool start_failed = false;      ///< statics could not be solved at the requested top (Dropped)
     std::string message;            ///< what happened (for logs), empty for a plain Advanced
@@ -147,13 +169,16 @@ class LockstepDriver {
   double solverTime() const;
   /// Time of the last accepted sample [s] (valid once started).
   double lastTime() const { return last_time_; }
-  /// Current state (valid once a sample was published).
+  /// Current state (valid once a sample was published; after a Failed sample the last good state,
+  /// summary.converged false).
   const core::StaticResult& state() const { return state_; }
   /// The problem the solver runs (the file's, with the samples as top motion and dt applied).
   const core::Problem& problem() const { return problem_; }
 
  private:
   Result start(double t, double x, double y, double z, Outcome outcome, const std::string& why);
+  /// `r` with `reason` unless its start failed (then it keeps StartFailed).
+  static Result withReason(Result r, Reason reason);
   std::unique_ptr<LockstepSolver> build(double x, double y, double z, bool at_problem_top, std::string& error) const;
   /// Empty when (x, y, z) is a usable top position for the model, else why not.
   std::string positionError(double x, double y, double z) const;
@@ -171,10 +196,12 @@ class LockstepDriver {
   double prev_t_ = 0.0, prev_x_ = 0.0, prev_y_ = 0.0, prev_z_ = 0.0;  ///< last accepted sample (solver time, position)
   double last_time_ = 0.0;           ///< time of the last accepted sample (epoch time)
   int jumps_ = 0;                    ///< consecutive samples dropped as jumps
+  int failures_ = 0;                 ///< consecutive samples on which the solver failed
   core::StaticResult state_;
 };
 
 const char* toString(LockstepDriver::Outcome o);
+const char* toString(LockstepDriver::Reason r);
 
 }  // namespace ros_bridge
 }  // namespace mooring_dynamics

@@ -4,8 +4,9 @@
 // One summary per diagnostics period ("window"): real-time factor, step cuts, Newton iterations,
 // slack events (a published state whose min tension <= 0 after one that was not), dropped and
 // re-initialised samples, the last error. Levels (docs/ros_interface.md, "Diagnostics"):
-//   ERROR  the solver failed in the window (recovered by re-initialising), or statics could not be
-//          solved at a requested top (run not started / sample dropped)
+//   ERROR  the solver failed in the window (the last good state kept and published, or after
+//          failures in a row re-initialised; the message names the line), or statics could not
+//          be solved at a requested top (run not started / sample dropped)
 //   WARN   no motion for more than `motion_timeout` (silent source, or none yet); input dropped
 //          (NaN, old stamp, unknown frame, jump); re-initialised (bag loop, gap, reset); step cuts;
 //          real-time factor below `min_real_time_factor`; the line is slack now
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/ros/event_tally.hpp"
 #include "mooring_dynamics/ros/lockstep.hpp"
 
 namespace mooring_dynamics {
@@ -26,7 +28,31 @@ namespace ros_bridge {
 struct MonitorOptions {
   double motion_timeout = 1.0;        ///< [s, wall] no motion for longer than this: WARN (silent source)
   double min_real_time_factor = 1.0;  ///< window real-time factor below this: WARN (cannot keep up)
+  std::string line_name;              ///< the line, named in failure messages
 };
+
+/// Keys of the counts in the diagnostics values, each reported as "<key> (window / total)".
+namespace lockstep_keys {
+constexpr const char* kNonFinite = "dropped: non-finite position";
+constexpr const char* kZeroStamp = "dropped: zero stamp";
+constexpr const char* kUnknownFrame = "dropped: unknown frame";
+constexpr const char* kOffPlane = "dropped: off the plane y = 0";
+constexpr const char* kSameStamp = "dropped: same stamp";
+constexpr const char* kStampBack = "dropped: stamp back";
+constexpr const char* kJump = "dropped: jump";
+constexpr const char* kStartFailed = "dropped: statics failed at the sample";
+constexpr const char* kNoTransform = "no transform (tf source)";
+constexpr const char* kOrientationNonFinite = "accepted: non-finite orientation (unused)";
+constexpr const char* kOrientationNonUnit = "accepted: non-unit orientation (unused)";
+constexpr const char* kReinitLoop = "re-initialised: bag loop";
+constexpr const char* kReinitGap = "re-initialised: gap";
+constexpr const char* kReinitJumps = "re-initialised: jumps";
+constexpr const char* kReinitRequest = "re-initialised: reset or request";
+constexpr const char* kReinitFailures = "re-initialised: solver failures";
+constexpr const char* kFailedKept = "solver failed: last good state kept";
+constexpr const char* kRequestRejected = "service requests rejected";
+constexpr const char* kOther = "dropped: other";
+}  // namespace lockstep_keys
 
 class LockstepMonitor {
  public:
@@ -41,8 +67,14 @@ class LockstepMonitor {
 
   /// A motion message arrived at wall time `wall_now` (before any check).
   void onMotionReceived(double wall_now);
-  /// Input rejected before the driver (bad frame, tf lookup failed, NaN): a WARN reason.
-  void onInputRejected(double wall_now, const std::string& message);
+  /// Input rejected before the driver (bad frame, tf lookup failed, NaN): a WARN reason, counted
+  /// under `key` (lockstep_keys).
+  void onInputRejected(double wall_now, const std::string& message, const std::string& key = lockstep_keys::kOther);
+  /// A sample accepted although a field the node does not use is bad (the pose's orientation):
+  /// counted under `key`; a WARN reason when `warn`.
+  void onInputNote(double wall_now, const std::string& message, const std::string& key, bool warn);
+  /// A service request refused for bad values: a WARN reason, counted.
+  void onRequestRejected(double wall_now, const std::string& message);
   /// A driver result; `wall_spent` [s] the wall time of the call; `state` the published state (if
   /// any); `solver_time` [s] the solver's time after the call.
   void onResult(const LockstepDriver::Result& r, double wall_now, double wall_spent,
@@ -52,6 +84,7 @@ class LockstepMonitor {
   Summary summarise(double wall_now);
 
   long slackEvents() const { return total_.slack_events + window_.slack_events; }
+  const EventTally& tally() const { return tally_; }
   double secondsSinceMotion(double wall_now) const { return wall_now - last_motion_wall_; }
   bool silent(double wall_now) const { return secondsSinceMotion(wall_now) > options_.motion_timeout; }
   bool everReceived() const { return ever_received_; }
@@ -64,12 +97,17 @@ class LockstepMonitor {
   };
   static void add(Counts& a, const Counts& b);
   void setError(double wall_now, const std::string& message);
+  /// "line <name>" (or "the line" without a name).
+  std::string lineName() const { return options_.line_name.empty() ? "the line" : "line " + options_.line_name; }
 
   MonitorOptions options_;
   Counts window_, total_;
+  EventTally tally_;
+  long notes_warn_ = 0, requests_rejected_ = 0;  ///< in the window
+  std::string last_note_, last_request_;
   double last_motion_wall_ = 0.0;
   bool ever_received_ = false;
-  std::string last_error_, last_drop_, last_reinit_;
+  std::string last_error_, last_drop_, last_reinit_, last_failure_;
   double last_error_wall_ = -1.0;
   bool slack_now_ = false;
   bool have_state_ = false;

@@ -64,7 +64,8 @@ class LockstepNode {
   void onOdometry(const nav_msgs::Odometry::ConstPtr& msg);
   void pollTf(const ros::WallTimerEvent&);
   void onDiagnosticsTimer(const ros::WallTimerEvent&);
-  void reject(const std::string& message);
+  void reject(const std::string& message, const char* key);
+  void checkOrientation(const geometry_msgs::Quaternion& q, const std::string& field);
   void handle(const LockstepDriver::Result& r, const ros::Time& stamp, double wall_spent);
   void publish(const ros::Time& stamp);
   void publishMarkersAndFrames();

@@ -3,9 +3,11 @@
 // DiagnosticStatus messages (one overall, one per line).
 //
 // One summary per diagnostics period ("window"). Levels (docs/ros_interface.md, "Moored vessel"):
-//   overall  ERROR  a line failed in the window (the line and its group restarted alone from
-//                   statics, the others went on; or, when that failed too, every line restarted
-//                   from statics at that sample's pose; the lines are named)
+//   overall  ERROR  a line failed in the window (the line is named): it restarted alone from
+//                   statics with its group while the others went on (~restart_failed_lines); or
+//                   the step could not be taken and VesselLockstep kept the last good state and
+//                   published it; or after failures in a row every line restarted from statics
+//                   at that sample's pose
 //            WARN   no motion for more than motion_timeout; samples dropped (bad pose, NaN or
 //                   non-unit quaternion, stamp not increasing, jump, no transform); restarted
 //                   (bag loop, gap, reset); real-time factor below min_real_time_factor
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
+#include "mooring_dynamics/ros/event_tally.hpp"
 
 namespace mooring_dynamics {
 namespace ros_bridge {
@@ -28,6 +31,30 @@ struct VesselMonitorOptions {
   double motion_timeout = 1.0;        ///< [s, wall] no motion for longer than this: WARN
   double min_real_time_factor = 1.0;  ///< window real-time factor below this: WARN
 };
+
+/// Keys of the counts in the overall status's values, each "<key> (window / total)".
+namespace vessel_keys {
+constexpr const char* kNonFinitePosition = "dropped: non-finite position";
+constexpr const char* kNonFiniteOrientation = "dropped: non-finite orientation";
+constexpr const char* kNonUnitOrientation = "dropped: non-unit orientation";
+constexpr const char* kNonFiniteTime = "dropped: non-finite time";
+constexpr const char* kBadTwist = "dropped: bad twist";
+constexpr const char* kZeroStamp = "dropped: zero stamp";
+constexpr const char* kUnknownFrame = "dropped: unknown frame";
+constexpr const char* kSameStamp = "dropped: same stamp";
+constexpr const char* kStampBack = "dropped: stamp back";
+constexpr const char* kJump = "dropped: jump";
+constexpr const char* kStartFailed = "dropped: statics failed at the pose";
+constexpr const char* kRestartLoop = "restarted: bag loop";
+constexpr const char* kRestartGap = "restarted: gap";
+constexpr const char* kRestartJumps = "restarted: jumps";
+constexpr const char* kRestartReset = "restarted: reset";
+constexpr const char* kRestartFailures = "restarted: line failures";
+constexpr const char* kFailedKept = "line failed: last good state kept";
+constexpr const char* kLinesRestarted = "line failed: restarted alone";
+constexpr const char* kRequestRejected = "service requests rejected";
+constexpr const char* kOther = "dropped: other";
+}  // namespace vessel_keys
 
 class VesselMonitor {
  public:
@@ -43,8 +70,12 @@ class VesselMonitor {
 
   /// A pose message arrived at wall time `wall_now` (before any check).
   void onMotionReceived(double wall_now);
-  /// A sample rejected by the node before VesselLockstep (zero stamp, no transform to ~frame_id).
-  void onInputRejected(double wall_now, const std::string& message);
+  /// A sample rejected by the node before VesselLockstep (zero stamp, no transform to ~frame_id),
+  /// counted under `key` (vessel_keys).
+  void onInputRejected(double wall_now, const std::string& message, const std::string& key = vessel_keys::kOther);
+  /// A service request refused for bad values (or failing): a WARN reason, counted.
+  void onRequestRejected(double wall_now, const std::string& message);
+  const EventTally& tally() const { return tally_; }
   /// A VesselLockstep result. `wall_spent` [s] the wall time of the call, `advanced` [s] the solver
   /// time it covered (Advanced), `top_tension` the lines' top tensions [N] when r.publish, and
   /// `solver_time` [s] the solver's time after the call.
@@ -74,6 +105,10 @@ class VesselMonitor {
   std::vector<std::string> names_;
   VesselMonitorOptions options_;
   Counts window_, total_;
+  EventTally tally_;
+  long requests_rejected_ = 0;  ///< in the window
+  std::string last_request_;
+  bool last_failure_kept_ = true;  ///< the last failure kept the last good state (else: restarted)
   std::vector<long> line_failures_window_, line_failures_total_;
   std::vector<std::string> line_last_failure_;
   std::vector<double> top_tension_, max_top_tension_;

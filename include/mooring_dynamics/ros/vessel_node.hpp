@@ -73,7 +73,7 @@ class VesselNode {
   void onOdometry(const nav_msgs::Odometry::ConstPtr& msg);
   void pollTf(const ros::WallTimerEvent&);
   void onDiagnosticsTimer(const ros::WallTimerEvent&);
-  void reject(const std::string& message);
+  void reject(const std::string& message, const char* key);
   void handle(const core::VesselLockstep::Result& r, const ros::Time& stamp, double wall_spent, double advanced);
   void publish(const ros::Time& stamp);
   void publishMarkersAndFrames(const ros::Time& stamp);
@@ -109,6 +109,7 @@ class VesselNode {
   ros::Time last_tf_stamp_;  ///< tf source: stamp of the last transform used
   bool have_output_ = false;
   ros::Time last_stamp_;     ///< stamp of the last published state
+  bool failed_sample_ = false;  ///< the sample being published failed: the last good state, converged false
 };
 
 /// True when ~problem_file names a system file with a vessel whose points carry lines.

@@ -42,6 +42,7 @@ struct SystemDynamics::Impl {
   std::vector<Eigen::MatrixXd> J;                   ///< per group: kept point Jacobian (its free points, 3 each)
   std::vector<double> line_t0;                      ///< system time at which each line's solver started (0, or its restart)
   std::function<bool(std::size_t, double)> fail_hook;  ///< test hook: failure injection
+  bool restart_failed_groups = true;                  ///< a failed group restarts from statics (else the step fails)
   std::vector<LineGroupRestart> restarts;           ///< of the last advanceTo
   long iterations = 0, line_steps = 0;
   std::unique_ptr<ThreadPool> pool;
@@ -264,6 +265,7 @@ const std::vector<std::vector<std::size_t>>& SystemDynamics::lineGroups() const 
 void SystemDynamics::setFailureInjection(std::function<bool(std::size_t, double)> fail) {
   impl_->fail_hook = std::move(fail);
 }
+void SystemDynamics::setRestartFailedGroups(bool restart) { impl_->restart_failed_groups = restart; }
 
 void SystemDynamics::setVesselMotion(std::function<RigidMotion(double)> motion) {
   if (!motion) throw std::invalid_argument("setVesselMotion: empty motion");
@@ -397,6 +399,10 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
     std::string abort_why;
     const RigidMotion vm = im.vessel_motion(t1);
     auto restart = [&](std::size_t g, const std::string& reason) {
+      if (!im.restart_failed_groups) {
+        abort_why = reason;
+        return false;
+      }
       Impl::Restart r;
       std::string why;
       if (!im.restartGroup(g, t1, vm.pose, r, why)) {
@@ -511,7 +517,7 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
       if (!stepGroup()) ok = restart(g, why);
     }
     if (!ok) {
-      // A group's statics failed too: the whole step is undone (the replacements are dropped).
+      // A failed group not restarted, or its statics failed too: the whole step is undone (the replacements are dropped).
       for (std::size_t i = 0; i < im.lines.size(); ++i) im.lines[i]->restore(*saved[i]);
       if (message) *message = "t = " + std::to_string(t1) + " s: " + abort_why;
       return false;

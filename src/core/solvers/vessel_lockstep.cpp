@@ -20,6 +20,7 @@ std::string VesselLockstepOptions::validate() const {
   if (!(start_angle_tolerance >= 0.0)) return "start_angle_tolerance = " + num(start_angle_tolerance) + " rad: must be >= 0";
   if (!(loop_back > 0.0)) return "loop_back = " + num(loop_back) + " s: must be > 0";
   if (jumps_to_reinit < 1) return "jumps_to_reinit = " + std::to_string(jumps_to_reinit) + ": must be >= 1";
+  if (failures_to_reinit < 1) return "failures_to_reinit = " + std::to_string(failures_to_reinit) + ": must be >= 1";
   if (threads < 1) return "threads = " + std::to_string(threads) + ": must be >= 1";
   return {};
 }
@@ -30,6 +31,7 @@ const char* toString(VesselLockstep::Outcome o) {
     case VesselLockstep::Outcome::Advanced: return "advanced";
     case VesselLockstep::Outcome::LinesRestarted: return "advanced, lines restarted";
     case VesselLockstep::Outcome::Reinitialised: return "reinitialised";
+    case VesselLockstep::Outcome::Failed: return "failed, last good state kept";
     case VesselLockstep::Outcome::RecoveredFailure: return "recovered from a failure";
     case VesselLockstep::Outcome::Dropped: return "dropped";
   }
@@ -42,6 +44,7 @@ VesselLockstep::VesselLockstep(const SystemProblem& system, const DynamicOptions
   const std::string e = options.validate();
   if (!e.empty()) throw std::invalid_argument(e);
   sim_ = std::make_unique<SystemDynamics>(system_, dynamics_, options_.threads);
+  sim_->setRestartFailedGroups(options_.restart_failed_lines);
   last_pose_ = system_.vessel.pose;
 }
 
@@ -77,9 +80,11 @@ VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, co
     s.placeVessel(at_file_pose ? ref : pose);
     try {
       sim_ = std::make_unique<SystemDynamics>(s, dynamics_, options_.threads);
+      sim_->setRestartFailedGroups(options_.restart_failed_lines);
       if (fail_hook_) sim_->setFailureInjection(fail_hook_);
     } catch (const std::exception& e) {
       ++dropped_;
+      r.reason = Reason::StartFailed;
       r.message = "cannot start at this pose: " + std::string(e.what());
       return r;
     }
@@ -89,6 +94,7 @@ VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, co
   t0_ = t;
   remember(t, pose, twist);
   jumps_ = 0;
+  failures_ = 0;
   r.outcome = outcome;
   r.publish = true;
   r.message = why;
@@ -98,31 +104,46 @@ VesselLockstep::Result VesselLockstep::start(double t, const RigidPose& pose, co
 VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_in, const BodyTwist* twist) {
   Result r;
   std::string bad = pose_in.validate("pose");
-  if (bad.empty() && twist) bad = twist->validate("twist");
-  if (bad.empty() && !std::isfinite(t)) bad = "time = " + num(t) + ": must be finite";
+  r.reason = !pose_in.position.allFinite()                 ? Reason::NonFinitePosition
+             : !pose_in.orientation.coeffs().allFinite() ? Reason::NonFiniteOrientation
+                                                         : Reason::NonUnitOrientation;
+  if (bad.empty() && twist) {
+    bad = twist->validate("twist");
+    r.reason = Reason::BadTwist;
+  }
+  if (bad.empty() && !std::isfinite(t)) {
+    bad = "time = " + num(t) + ": must be finite";
+    r.reason = Reason::NonFiniteTime;
+  }
   if (!bad.empty()) {
     ++dropped_;
     r.message = bad;
     return r;
   }
+  r.reason = Reason::None;
   RigidPose pose = pose_in;
   pose.orientation.normalize();
   if (!started_) return start(t, pose, twist, Outcome::Started, "");
   if (t <= last_t_) {
     if (last_t_ - t > options_.loop_back)
-      return start(t, pose, twist, Outcome::Reinitialised, "time went back by " + num(last_t_ - t) + " s (bag loop)");
+      return withReason(start(t, pose, twist, Outcome::Reinitialised, "time went back by " + num(last_t_ - t) + " s (bag loop)"),
+                        Reason::LoopBack);
     ++dropped_;
     r.message = "time " + num(t) + " s not after the last sample's " + num(last_t_) + " s";
+    r.reason = t == last_t_ ? Reason::SameStamp : Reason::StampBack;
     return r;
   }
   const double gap = t - last_t_;
   if (options_.max_gap > 0.0 && gap > options_.max_gap)
-    return start(t, pose, twist, Outcome::Reinitialised, "gap of " + num(gap) + " s since the last sample");
+    return withReason(start(t, pose, twist, Outcome::Reinitialised, "gap of " + num(gap) + " s since the last sample"),
+                      Reason::Gap);
   const double speed = (pose.position - last_pose_.position).norm() / gap;
   if (options_.max_speed > 0.0 && speed > options_.max_speed) {
-    if (++jumps_ >= options_.jumps_to_reinit) return start(t, pose, twist, Outcome::Reinitialised, "the vessel jumped");
+    if (++jumps_ >= options_.jumps_to_reinit)
+      return withReason(start(t, pose, twist, Outcome::Reinitialised, "the vessel jumped"), Reason::Jumps);
     ++dropped_;
     r.message = "jump implying " + num(speed) + " m/s (max_speed " + num(options_.max_speed) + ")";
+    r.reason = Reason::Jump;
     return r;
   }
   jumps_ = 0;
@@ -132,8 +153,26 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
                                : RigidSegment(last_t_ - t0_, last_pose_, t - t0_, pose);
   sim_->setVesselMotion([seg](double tau) { return seg.at(tau); });
   std::string why;
-  if (!sim_->advanceTo(t - t0_, &why))
-    return start(t, pose, twist, Outcome::RecoveredFailure, "restarted from statics after a failure: " + why);
+  if (!sim_->advanceTo(t - t0_, &why)) {
+    if (++failures_ >= options_.failures_to_reinit)
+      return withReason(start(t, pose, twist, Outcome::RecoveredFailure,
+                              "restarted from statics after " + std::to_string(failures_) + " failures in a row: " + why),
+                        Reason::SolverFailed);
+    // Keep the last good state: every line stays at the last converged step ts, where the vessel
+    // was on this sample's path; the next sample moves it on from there.
+    const double ts = sim_->time();
+    last_motion_ = seg.at(ts);
+    last_pose_ = last_motion_.pose;
+    last_has_twist_ = last_has_twist_ && twist != nullptr;
+    last_t_ = t0_ + ts;
+    r.outcome = Outcome::Failed;
+    r.reason = Reason::SolverFailed;
+    r.publish = true;
+    r.message = why + "; the last good state (t = " + num(ts) + " s) is kept; failure " + std::to_string(failures_) +
+                " of " + std::to_string(options_.failures_to_reinit) + " in a row before a restart from statics";
+    return r;
+  }
+  failures_ = 0;
   remember(t, pose, twist);
   r.outcome = Outcome::Advanced;
   r.publish = true;
@@ -153,7 +192,13 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
 VesselLockstep::Result VesselLockstep::reset() {
   if (!started_) return {};
   const BodyTwist tw{last_motion_.pose.toBody(last_motion_.velocity), last_motion_.pose.toBody(last_motion_.angular_velocity)};
-  return start(last_t_, last_pose_, last_has_twist_ ? &tw : nullptr, Outcome::Reinitialised, "reset");
+  return withReason(start(last_t_, last_pose_, last_has_twist_ ? &tw : nullptr, Outcome::Reinitialised, "reset"),
+                    Reason::Reset);
+}
+
+VesselLockstep::Result VesselLockstep::withReason(Result r, Reason reason) {
+  if (r.reason == Reason::None) r.reason = reason;
+  return r;
 }
 
 }  // namespace core

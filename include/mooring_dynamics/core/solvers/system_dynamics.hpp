@@ -29,7 +29,8 @@
 // not converge, or its point iteration does not), it alone restarts from statics at t1 (the
 // vessel's pose at t1, its free points solved again), at rest, and the other groups go on with
 // the bits they would have had anyway; lastRestarts() names the lines. Only when those statics
-// fail too does advanceTo return false.
+// fail too does advanceTo return false. With setRestartFailedGroups(false) (an offline run, which
+// stops rather than go on from statics) a failed group makes advanceTo return false at once.
 #pragma once
 
 #include <array>
@@ -81,8 +82,9 @@ class SystemDynamics {
 
   /// Advance to t_end in base steps of options.dt (the last one shortened). A group of lines that
   /// fails in a step restarts alone from statics at the end of that step (lastRestarts()); true
-  /// then. False, with the reason in `message`, when such a restart's statics fail too; the state
-  /// then stays at the last completed step.
+  /// then. False, with the reason in `message`, when such a restart's statics fail too, or at once
+  /// when group restarts are off (setRestartFailedGroups); the state then stays at the last
+  /// completed step (time() tells which).
   bool advanceTo(double t_end, std::string* message = nullptr);
   /// The groups that restarted during the last advanceTo (empty when none did).
   const std::vector<LineGroupRestart>& lastRestarts() const;
@@ -94,6 +96,9 @@ class SystemDynamics {
   /// (test hook)"). Empty (the default): no injection. Used by test_system_dynamics to check that
   /// the other groups continue bit for bit.
   void setFailureInjection(std::function<bool(std::size_t line, double t1)> fail);
+  /// true (the default): a failed group restarts alone from statics (see advanceTo); false: the
+  /// step fails and advanceTo returns false with the failed line named.
+  void setRestartFailedGroups(bool restart);
 
   double time() const;
   const SystemStaticResult& initialStatic() const;

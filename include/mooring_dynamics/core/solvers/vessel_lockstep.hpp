@@ -17,11 +17,17 @@
 //  * time not increasing: dropped; going back by more than loop_back (a bag loop): restarted;
 //  * a gap over max_gap since the last accepted sample: restarted at the sample (motion unknown);
 //  * a jump implying a speed over max_speed: dropped; jumps_to_reinit in a row: restarted there;
-//  * a line that fails (smallest step cut, or its group's point iteration): that line alone (with
-//    the lines sharing a free point with it: its group, SystemDynamics) restarts from statics at
-//    the pose at the end of the failed step, the others go on (Outcome::LinesRestarted, the lines
-//    named in failed_lines and the message); only when those statics fail too does every line
-//    restart from statics at the sample's pose (Outcome::RecoveredFailure).
+//  * a line that fails (smallest step cut, or its group's point iteration), with
+//    restart_failed_lines (the default): that line alone (with the lines sharing a free point
+//    with it: its group, SystemDynamics) restarts from statics at the pose at the end of the
+//    failed step, the others go on (Outcome::LinesRestarted, the lines named in failed_lines and
+//    the message);
+//  * a step that cannot be taken (a failed line without restart_failed_lines, or its group's
+//    statics failing too): the last good state is kept (every line stays at the last converged
+//    step) and published for this sample (Failed, the failed line named in the message); the
+//    next sample continues from it, the vessel moving on from where it was at that step.
+//    failures_to_reinit failures in a row: every line restarted from statics at the sample's
+//    pose (RecoveredFailure).
 #pragma once
 
 #include <functional>
@@ -45,6 +51,8 @@ struct VesselLockstepOptions {
   double max_gap = 5.0;                  ///< [s] a longer gap restarts; <= 0: never
   double max_speed = 50.0;               ///< [m/s] a faster jump of the origin is dropped; <= 0: no check
   int jumps_to_reinit = 3;               ///< this many jumps in a row restart at the new pose
+  int failures_to_reinit = 3;            ///< this many failed samples in a row restart from statics
+  bool restart_failed_lines = true;      ///< a failed line's group restarts alone (else the step fails)
   int threads = 1;                       ///< threads that advance the lines (>= 1; same bits for any)
   /// Empty when valid, else the field, value and constraint.
   std::string validate() const;
@@ -52,9 +60,15 @@ struct VesselLockstepOptions {
 
 class VesselLockstep {
  public:
-  enum class Outcome { Started, Advanced, LinesRestarted, Reinitialised, RecoveredFailure, Dropped };
+  enum class Outcome { Started, Advanced, LinesRestarted, Reinitialised, Failed, RecoveredFailure, Dropped };
+  /// Why a sample was dropped, the run restarted or failed (counted apart in the node's diagnostics).
+  enum class Reason {
+    None, NonFinitePosition, NonFiniteOrientation, NonUnitOrientation, BadTwist, NonFiniteTime, SameStamp, StampBack, Jump,
+    StartFailed, LoopBack, Gap, Jumps, Reset, SolverFailed
+  };
   struct Result {
     Outcome outcome = Outcome::Dropped;
+    Reason reason = Reason::None;
     bool publish = false;     ///< a new state (wrench, lines) is available
     std::string message;      ///< what happened; empty for a plain Advanced
     /// LinesRestarted: the lines (indices, line order) that failed and restarted from statics,
@@ -92,6 +106,8 @@ class VesselLockstep {
   Result start(double t, const RigidPose& pose, const BodyTwist* twist, Outcome outcome, const std::string& why);
   /// Keeps the last accepted sample (pose, and its world-frame velocities when it had a twist).
   void remember(double t, const RigidPose& pose, const BodyTwist* twist);
+  /// `r` with `reason` unless it has one already (StartFailed).
+  static Result withReason(Result r, Reason reason);
 
   SystemProblem system_;
   DynamicOptions dynamics_;
@@ -105,6 +121,7 @@ class VesselLockstep {
   bool last_has_twist_ = false;
   RigidMotion last_motion_;  ///< the last sample's pose and world velocities (when it had a twist)
   int jumps_ = 0;
+  int failures_ = 0;  ///< consecutive failed samples
   long dropped_ = 0;
 };
 
