@@ -143,7 +143,7 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
         [this](const ros::Time& stamp, const core::RigidPose& p) {
           onMotion(stamp, frame_id_, p.position.x(), p.position.y(), p.position.z(), "fix");
         },
-        [this](const std::string& message) { reject(message); });
+        [this](const std::string& message) { reject(message, lockstep_keys::kGnssRejected); });
     input = gnss_->topics();
   } else {
     tf_timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / poll_rate), &LockstepNode::pollTf, this);

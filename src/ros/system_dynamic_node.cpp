@@ -222,6 +222,7 @@ void SystemDynamicNode::handle(const core::VesselLockstep::Result& r, const ros:
     case O::Reinitialised:
       ROS_WARN("mooring_dynamics: ROS time %.6f: restarted from statics: %s", stamp.toSec(), r.message.c_str());
       break;
+    case O::Failed:  // not produced here: a failed group restarts (above)
     case O::RecoveredFailure:
     case O::LinesRestarted:
       ROS_ERROR("mooring_dynamics: ROS time %.6f: %s", stamp.toSec(), monitor_->lastEvent().c_str());

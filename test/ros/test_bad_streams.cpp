@@ -459,7 +459,9 @@ void silentTopic(bool republishes) {
   const Diag d = g_h->freshDiag();
   EXPECT_EQ(d.level, 1) << d.message;  // WARN
   EXPECT_NE(d.message.find("no motion for"), std::string::npos) << d.message;
-  if (republishes) EXPECT_GT(g_h->answers(last), before) << "the last good state is republished while silent";
+  if (republishes) {
+    EXPECT_GT(g_h->answers(last), before) << "the last good state is republished while silent";
+  }
   const Diag& a = s.after();
   EXPECT_EQ(a.message.find("no motion for"), std::string::npos) << a.message;
 }

@@ -42,6 +42,7 @@ constexpr const char* kStampBack = "dropped: stamp back";
 constexpr const char* kJump = "dropped: jump";
 constexpr const char* kStartFailed = "dropped: statics failed at the sample";
 constexpr const char* kNoTransform = "no transform (tf source)";
+constexpr const char* kGnssRejected = "dropped: GNSS fix rejected";  ///< by reason in the "gnss ..." values
 constexpr const char* kOrientationNonFinite = "accepted: non-finite orientation (unused)";
 constexpr const char* kOrientationNonUnit = "accepted: non-unit orientation (unused)";
 constexpr const char* kReinitLoop = "re-initialised: bag loop";
