@@ -27,7 +27,8 @@ VesselMonitor::VesselMonitor(std::vector<std::string> line_names, const VesselMo
       last_motion_wall_(wall_now) {
   namespace k = vessel_keys;
   tally_ = EventTally({k::kNonFinitePosition, k::kNonFiniteOrientation, k::kNonUnitOrientation, k::kBadTwist,
-                       k::kNonFiniteTime, k::kZeroStamp, k::kUnknownFrame, k::kSameStamp, k::kStampBack, k::kJump, k::kStartFailed,
+                       k::kNonFiniteTime, k::kZeroStamp, k::kUnknownFrame, k::kGnssRejected, k::kSameStamp,
+                       k::kStampBack, k::kJump, k::kStartFailed,
                        k::kRestartLoop, k::kRestartGap, k::kRestartJumps, k::kRestartReset, k::kRestartFailures,
                        k::kFailedKept, k::kLinesRestarted, k::kRequestRejected});
 }

@@ -64,10 +64,11 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
                              "\": must differ from ~frame_id (the body frame moves with the vessel)");
 
   pnh_.param<std::string>("motion_source", motion_source_, "pose");
-  if (motion_source_ != "pose" && motion_source_ != "odometry" && motion_source_ != "tf")
+  if (motion_source_ != "pose" && motion_source_ != "odometry" && motion_source_ != "tf" && motion_source_ != "gnss")
     throw std::runtime_error("parameter " + pnh_.resolveName("motion_source") + " = \"" + motion_source_ +
                              "\": must be \"pose\" (~vessel_pose, geometry_msgs/PoseStamped), \"odometry\" "
-                             "(~vessel_odom, nav_msgs/Odometry) or \"tf\" (~frame_id <- ~vessel_frame)");
+                             "(~vessel_odom, nav_msgs/Odometry), \"tf\" (~frame_id <- ~vessel_frame) or \"gnss\" "
+                             "(~fix sensor_msgs/NavSatFix and ~heading)");
   pnh_.param("use_twist", use_twist_, true);
   const double poll_rate = doubleParam(pnh_, "tf_poll_rate", 20.0, [](double v) { return v > 0.0; }, "must be > 0 [Hz]");
   tf_timeout_ = doubleParam(pnh_, "tf_timeout", 0.1, [](double v) { return v >= 0.0; }, "must be >= 0 [s]");
@@ -172,6 +173,23 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     motion_sub_ = pnh_.subscribe("vessel_odom", 100, &VesselNode::onOdometry, this);
     input = motion_sub_.getTopic() + (use_twist_ ? " (pose and twist: Hermite path through both)"
                                                   : " (pose only, ~use_twist false: velocities from the pose sequence)");
+  } else if (motion_source_ == "gnss") {
+    // The fixes drive the vessel (docs/problem_format.md, dynamics.gnss): the first accepted fix
+    // puts the vessel at its file pose (datum first_fix), the heading turns it, the antenna's
+    // lever arm is taken off; the same core::GnssTrack as cable_sim dynamic on a track CSV.
+    core::GnssOptions go = system_.dynamics.gnss;
+    go.enabled = true;
+    gnss_ = std::make_unique<GnssInput>(
+        pnh_, go, system_.vessel.pose, Eigen::Vector2d::Zero(),
+        [this](const ros::Time& stamp, const core::RigidPose& p) {
+          monitor_->onMotionReceived(wallNow());
+          onWorldPose(stamp, p, "fix");
+        },
+        [this](const std::string& message) {
+          monitor_->onMotionReceived(wallNow());
+          reject(message, vessel_keys::kGnssRejected);
+        });
+    input = gnss_->topics();
   } else {
     tf_timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / poll_rate), &VesselNode::pollTf, this);
     input = "tf " + frame_id_ + " <- " + vessel_frame_ + " polled at " + formatNumber(poll_rate) + " Hz";
@@ -255,7 +273,11 @@ void VesselNode::onMotion(const ros::Time& stamp, const std::string& frame, cons
     }
     pose = out.pose;
   }
-  const core::RigidPose rp = toRigidPose(pose);
+  onWorldPose(stamp, toRigidPose(pose), field, twist);
+}
+
+void VesselNode::onWorldPose(const ros::Time& stamp, const core::RigidPose& rp, const std::string& field,
+                             const core::BodyTwist* twist) {
   // The epoch is the first stamp of a usable pose; VesselLockstep checks (and counts) every sample.
   if (!have_epoch_ && rp.validate(field).empty()) {
     have_epoch_ = true;
@@ -385,8 +407,10 @@ void VesselNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   if (monitor_->silent(now) && monitor_->everReceived())
     ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: no vessel pose for %.1f s; last good state kept (latched)",
                       monitor_->secondsSinceMotion(now));
-  diag_pub_.publish(toDiagnostics(monitor_->summarise(now), ros::this_node::getName(), "vessel lockstep", system_.name,
-                                  ros::Time::now()));
+  std::vector<VesselMonitor::Status> statuses = monitor_->summarise(now);
+  if (gnss_ && !statuses.empty())
+    for (const auto& kv : gnss_->values()) statuses.front().values.push_back(kv);
+  diag_pub_.publish(toDiagnostics(statuses, ros::this_node::getName(), "vessel lockstep", system_.name, ros::Time::now()));
 }
 
 bool VesselNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {

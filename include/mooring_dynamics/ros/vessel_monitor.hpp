@@ -41,6 +41,7 @@ constexpr const char* kNonFiniteTime = "dropped: non-finite time";
 constexpr const char* kBadTwist = "dropped: bad twist";
 constexpr const char* kZeroStamp = "dropped: zero stamp";
 constexpr const char* kUnknownFrame = "dropped: unknown frame";
+constexpr const char* kGnssRejected = "dropped: GNSS input rejected";  ///< fixes and headings, by reason in the "gnss ..." values
 constexpr const char* kSameStamp = "dropped: same stamp";
 constexpr const char* kStampBack = "dropped: stamp back";
 constexpr const char* kJump = "dropped: jump";

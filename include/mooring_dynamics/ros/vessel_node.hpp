@@ -10,8 +10,9 @@
 //   ~frame_id         world frame of the poses and world-frame outputs (default "world")
 //   ~vessel_frame     body frame (default: vessel.frame of the file)
 //   ~motion_source    "pose" (~vessel_pose, PoseStamped), "odometry" (~vessel_odom, Odometry: its
-//                     pose, and its twist unless ~use_twist is false) or "tf" (poll ~frame_id <-
-//                     ~vessel_frame at ~tf_poll_rate)
+//                     pose, and its twist unless ~use_twist is false), "tf" (poll ~frame_id <-
+//                     ~vessel_frame at ~tf_poll_rate) or "gnss" (~fix NavSatFix and ~heading,
+//                     through the file's dynamics.gnss options, as cable_sim dynamic on a track)
 //   ~use_twist        odometry: take the velocities at the samples from the twist (default true)
 //   ~threads          threads that advance the lines (default: hardware threads; same bits for any)
 //   ~dt, ~start_tolerance, ~start_angle_tolerance, ~loop_back, ~max_gap, ~max_speed, ~jumps_to_reinit
@@ -41,6 +42,7 @@
 #include "mooring_dynamics/VesselStatics.h"
 #include "mooring_dynamics/core/model/system.hpp"
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
+#include "mooring_dynamics/ros/gnss_input.hpp"
 #include "mooring_dynamics/ros/markers.hpp"
 #include "mooring_dynamics/ros/vessel_monitor.hpp"
 
@@ -61,6 +63,9 @@ class VesselNode {
   /// `twist`: the body-frame twist of the sample (odometry with ~use_twist), or null.
   void onMotion(const ros::Time& stamp, const std::string& frame, const geometry_msgs::Pose& pose,
                 const std::string& field, const core::BodyTwist* twist = nullptr);
+  /// One pose sample already in ~frame_id (world, REP 103): the lockstep step and its outputs.
+  void onWorldPose(const ros::Time& stamp, const core::RigidPose& pose, const std::string& field,
+                   const core::BodyTwist* twist = nullptr);
 
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSolveStatic(VesselStatics::Request& req, VesselStatics::Response& res);
@@ -93,6 +98,7 @@ class VesselNode {
   std::vector<MarkerOptions> marker_options_;  ///< per line
   std::unique_ptr<core::VesselLockstep> lockstep_;
   std::unique_ptr<VesselMonitor> monitor_;
+  std::unique_ptr<GnssInput> gnss_;  ///< ~motion_source gnss
   ros::Publisher wrench_pub_, wrench_world_pub_, marker_pub_, diag_pub_;
   std::vector<ros::Publisher> state_pubs_;     ///< per line
   std::vector<ros::Publisher> fairlead_pubs_;  ///< per line (empty publisher: the line has no end on the vessel)
