@@ -500,8 +500,11 @@ bool plotVariation(const core::SweepManifest& m, std::size_t v, const std::vecto
   const auto& var = m.variations[v];
   bool numeric = true;
   for (double x : var.numbers) numeric = numeric && std::isfinite(x);
-  bool utilization = false;
-  for (const auto& s : storms) utilization = utilization || s.mbl > 0.0;
+  bool utilization = false, fitted = false;
+  for (const auto& s : storms) {
+    utilization = utilization || s.mbl > 0.0;
+    fitted = fitted || s.fitted;
+  }
   std::vector<std::string> lines;
   for (const auto& s : storms)
     if (std::find(lines.begin(), lines.end(), s.line) == lines.end()) lines.push_back(s.line);
@@ -531,8 +534,8 @@ bool plotVariation(const core::SweepManifest& m, std::size_t v, const std::vecto
      << "set title " << gpString(m.name + ": " + (utilization ? "utilization" : "top tension") + " against " + var.name +
                                  " (largest over the other variations)") << "\n"
      << "set xlabel " << gpString(var.name) << "\n"
-     << "set ylabel " << gpString(utilization ? "top tension / MBL (most probable maximum over the seeds)"
-                                              : "top tension [kN] (most probable maximum over the seeds)") << "\n"
+     << "set ylabel " << gpString(std::string(utilization ? "top tension / MBL" : "top tension [kN]") +
+                                  (fitted ? " (most probable maximum over the seeds)" : " (maximum)")) << "\n"
      << "set yrange [0:*]\n";
   if (!numeric) {
     gp << "set xtics (";

@@ -205,3 +205,17 @@ TEST(SweepIo, ErrorsNameKeyValueAndConstraint) {
   e = loadError(base + "variations: [{name: s, key: a, values: [1], seeds: true}, {name: t, key: b, values: [1], seeds: true}]\n");
   EXPECT_TRUE(has(e, "one variation at most")) << e;
 }
+
+TEST(SweepIo, AFileTheSweepSetsIsRelativeToTheSweepFile) {
+  const fs::path dir = tempDir("pathset");
+  // The sweep "lives" in config/ and names a motion table there for a base file in test/data/.
+  const md::SweepSpec s = md::loadSweepFromString("base: " + kData + "small_vessel.yaml\n"
+                                                  "set: {vessel.motion_table: spread_mooring_motion.csv}\n",
+                                                  kConfig);
+  const auto cases = md::expandSweep(s);
+  ASSERT_EQ(cases.size(), 1u);
+  EXPECT_EQ(cases[0].name, "base");
+  const md::SystemProblem p = md::loadSystemFromString(md::caseProblemText(s, cases[0], dir.string()), dir.string());
+  EXPECT_EQ(fs::canonical(p.vessel.motion_table), fs::canonical(kConfig + "spread_mooring_motion.csv"));
+  fs::remove_all(dir);
+}
