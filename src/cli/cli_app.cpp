@@ -173,7 +173,8 @@ void printExitCodes(std::ostream& o) {
        "  2  usage error: unknown command or option, missing or malformed argument\n"
        "  3  bad input: problem file unreadable or invalid (the message names the key)\n"
        "  4  solver did not converge, or the dynamic run stopped early (results so far are still\n"
-       "     written, marked \"converged\": false / \"completed\": false)\n"
+       "     written, marked \"converged\": false / \"completed\": false); sweep: a case failed or\n"
+       "     was not run (DIR/status.csv)\n"
        "  5  I/O error writing the output files (plot: also gnuplot missing or failing)\n";
 }
 

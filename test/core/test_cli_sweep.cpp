@@ -315,7 +315,7 @@ TEST_F(CliSweep, SlurmArrayScriptParsesAndOneTaskRunsItsCase) {
   EXPECT_TRUE(std::regex_match(sbatch["time"], std::regex("^[0-9]+:[0-5][0-9]:00$"))) << sbatch["time"];
   EXPECT_EQ(sbatch["output"], fs::absolute(dir).lexically_normal().string() + "/slurm/%A_%a.out");
   EXPECT_EQ(sbatch["ntasks"], "1");
-  EXPECT_FALSE(sbatch["job-name"].empty());
+  EXPECT_EQ(sbatch["job-name"], "small_buoy_sweep");  // no spaces: sbatch splits the line there
   // Task 3 as Slurm would start it: line 4 of cases.txt.
   const Result task = sh("SLURM_ARRAY_TASK_ID=3 bash " + q(script.string()), root_ / "task3.log");
   ASSERT_EQ(task.code, 0) << task.out;
