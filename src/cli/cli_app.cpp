@@ -173,7 +173,8 @@ void printExitCodes(std::ostream& o) {
        "  2  usage error: unknown command or option, missing or malformed argument\n"
        "  3  bad input: problem file unreadable or invalid (the message names the key)\n"
        "  4  solver did not converge, or the dynamic run stopped early (results so far are still\n"
-       "     written, marked \"converged\": false / \"completed\": false)\n"
+       "     written, marked \"converged\": false / \"completed\": false); sweep: a case failed or\n"
+       "     was not run (DIR/status.csv)\n"
        "  5  I/O error writing the output files (plot: also gnuplot missing or failing)\n";
 }
 
@@ -298,6 +299,33 @@ const std::vector<Command>& commands() {
            {"help", 'h', nullptr, "show this help"},
        },
        &runOffset},
+      {"sweep", "SWEEP.yaml --out DIR [--jobs N] [--emit gnu-parallel|slurm] [--no-progress] | --collect DIR",
+       "load-case sweep: many dynamic runs of variations of one problem",
+       "Expand SWEEP.yaml (a base problem, system or vessel file and named variations of its keys: sea\n"
+       "states, headings, seeds, a line removed; see docs/design_analysis.md) into one problem file per\n"
+       "case, DIR/cases/<case>.yaml, each runnable alone with 'cable_sim dynamic'. Then run the cases on\n"
+       "N local processes (default: the number of cores) and summarise them, or with --emit write the\n"
+       "job list for GNU parallel (DIR/jobs.txt) or a Slurm job array (DIR/sweep.slurm) instead.\n"
+       "Finished cases (DIR/results/<case>/) are skipped when the sweep is started again; a failed case\n"
+       "is recorded in DIR/failed/<case>/ (run.log, error.txt) and the others go on. The summary\n"
+       "('--collect DIR' after an external run):\n"
+       "  DIR/summary.csv   per case and line: max, mean, std of the top tension, MBL, utilization,\n"
+       "                    largest horizontal top offset\n"
+       "  DIR/storms.csv    per storm (the cases that differ only in their seed) and line: the per-seed\n"
+       "                    maxima and their Gumbel fit's most probable maximum\n"
+       "  DIR/status.csv    done / failed (with the error) / not run, per case\n"
+       "  DIR/utilization_vs_<variation>.png   one curve per line (gnuplot)\n"
+       "Exit code 4 when a case failed or was not run.",
+       {
+           {"out", 0, "DIR", "the sweep's folder (created)"},
+           {"jobs", 'j', "N", "cases run at the same time on this machine (default: number of cores)"},
+           {"emit", 0, "KIND", "gnu-parallel or slurm: write the job list instead of running"},
+           {"collect", 0, "DIR", "summarise the results in DIR (after an external run)"},
+           {"run-case", 0, "NAME", "run one case of --out DIR (what the pool, jobs.txt and sweep.slurm call)"},
+           {"no-progress", 0, nullptr, "no progress bar (shown on stderr only when it is a terminal)"},
+           {"help", 'h', nullptr, "show this help"},
+       },
+       &runSweep},
   };
   return list;
 }

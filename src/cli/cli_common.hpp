@@ -74,6 +74,9 @@ std::string shellQuote(const std::string& s);
 std::string gpString(const std::string& s);
 /// gnuplot is on PATH.
 bool gnuplotAvailable();
+/// Write `script` to dir/name.gp and run gnuplot on it; false with gnuplot's log on err (also
+/// when gnuplot is not installed).
+bool runGnuplot(const fs::path& dir, const std::string& name, const std::string& script, std::ostream& err);
 
 // ---------------------------------------------------------------------------------------------
 // Output files
@@ -108,6 +111,7 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err);
 int runPlot(const ParsedArgs& args, std::ostream& out, std::ostream& err);        // cmd_plot.cpp
 int runStiffness(const ParsedArgs& args, std::ostream& out, std::ostream& err);   // cmd_vessel.cpp
 int runOffset(const ParsedArgs& args, std::ostream& out, std::ostream& err);      // cmd_vessel.cpp
+int runSweep(const ParsedArgs& args, std::ostream& out, std::ostream& err);       // cmd_sweep.cpp
 /// `static` on a system file (points and lines), cmd_system.cpp.
 int runSystemStatic(const std::string& path, bool want_table, std::size_t stride, double spacing_scale,
                     const std::string& out_dir, std::ostream& out, std::ostream& err);

@@ -51,27 +51,6 @@ bool loadVesselFile(const ParsedArgs& args, core::SystemProblem& s, std::ostream
   return true;
 }
 
-/// Runs gnuplot on `script` (written to dir/name.gp); false with the log on err.
-bool plot(const fs::path& dir, const std::string& name, const std::string& script, std::ostream& err) {
-  if (!gnuplotAvailable()) {
-    err << kProg << ": error: gnuplot not found; install it with scripts/setup (Debian package gnuplot-nox)\n";
-    return false;
-  }
-  const fs::path gp = dir / (name + ".gp"), log = dir / (name + ".log");
-  if (!writeFile(gp, [&](std::ostream& f) { f << script; }, err)) return false;
-  const std::string cmd = "gnuplot " + shellQuote(gp.string()) + " >" + shellQuote(log.string()) + " 2>&1";
-  if (std::system(cmd.c_str()) != 0) {
-    std::ifstream f(log);
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    err << kProg << ": error: gnuplot failed on " << gp.string() << ":\n" << ss.str();
-    return false;
-  }
-  std::error_code ec;
-  fs::remove(log, ec);
-  return true;
-}
-
 }  // namespace
 
 int runStiffness(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
@@ -191,7 +170,7 @@ int runOffset(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
        << "plot " << gpString(csv.string()) << " skip 1 using 1:($" << (c + 2)
        << "/1000) with linespoints lw 2 title \"restoring\", " << gpString(csv.string())
        << " skip 1 using 1:($8/1000) axes x1y2 with linespoints lw 2 title \"largest tension\"\n";
-    if (!plot(dir, "offset", gp.str(), err)) return kExitIo;
+    if (!runGnuplot(dir, "offset", gp.str(), err)) return kExitIo;
     out << "wrote " << csv.string() << " and " << png.string() << "\n";
   }
   if (!all) {

@@ -1,6 +1,9 @@
-// gnuplot helpers shared by 'cable_sim plot' and the vessel commands.
+// gnuplot helpers shared by 'cable_sim plot', the vessel commands and 'sweep'.
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <system_error>
 
 #include "cli_common.hpp"
 
@@ -29,6 +32,26 @@ std::string gpString(const std::string& s) {
 }
 
 bool gnuplotAvailable() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+bool runGnuplot(const fs::path& dir, const std::string& name, const std::string& script, std::ostream& err) {
+  if (!gnuplotAvailable()) {
+    err << kProg << ": error: gnuplot not found; install it with scripts/setup (Debian package gnuplot-nox)\n";
+    return false;
+  }
+  const fs::path gp = dir / (name + ".gp"), log = dir / (name + ".log");
+  if (!writeFile(gp, [&](std::ostream& f) { f << script; }, err)) return false;
+  const std::string cmd = "gnuplot " + shellQuote(gp.string()) + " >" + shellQuote(log.string()) + " 2>&1";
+  if (std::system(cmd.c_str()) != 0) {
+    std::ifstream f(log);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    err << kProg << ": error: gnuplot failed on " << gp.string() << ":\n" << ss.str();
+    return false;
+  }
+  std::error_code ec;
+  fs::remove(log, ec);
+  return true;
+}
 
 }  // namespace detail
 }  // namespace cli
