@@ -156,6 +156,15 @@ DynamicFigures figuresOf(const core::DynamicSeries& r) {
   return f;
 }
 
+/// The peak tension and its utilization as a JSON object (utilization null without an mbl).
+std::string peakJson(const core::TensionPeak& k) {
+  std::string o = "{\"value\": " + jsonNum(k.max_tension) + ", \"s\": " + jsonNum(k.s_max) +
+                  ", \"t\": " + jsonNum(k.t_max) + ", \"utilization\": ";
+  if (!k.has_mbl) return o + "null}";
+  return o + jsonNum(k.utilization) + ", \"mbl\": " + jsonNum(k.mbl) + ", \"material\": " + jsonStr(k.material) +
+         ", \"utilization_s\": " + jsonNum(k.s_util) + ", \"utilization_t\": " + jsonNum(k.t_util) + "}";
+}
+
 void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core::DynamicSeries& r,
                              const DynamicFigures& g) {
   const core::DynamicOptions& d = p.dynamics;
@@ -173,7 +182,8 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
     << "  \"samples\": " << r.t.size() << ",\n"
     << "  \"top_tension\": {\"mean\": " << jsonNum(g.top.mean) << ", \"std\": " << jsonNum(g.top.std)
     << ", \"min\": " << jsonNum(g.top.min) << ", \"max\": " << jsonNum(g.top.max) << "},\n"
-    << "  \"static_top_tension\": " << jsonNum(g.static_top) << ",\n";
+    << "  \"static_top_tension\": " << jsonNum(g.static_top) << ",\n"
+    << "  \"max_tension\": " << peakJson(r.peak) << ",\n";
   if (r.initial_static.drifting && g.simulated > 0.0)
     f << "  \"static_drift_velocity\": {\"x\": " << jsonNum(r.initial_static.drift_vx)
       << ", \"y\": " << jsonNum(r.initial_static.drift_vy) << "},\n"
@@ -207,6 +217,7 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
   o << "  top tension    mean " << fmtNum("%.1f", g.top.mean) << " N, std " << fmtNum("%.1f", g.top.std)
     << " N, min " << fmtNum("%.1f", g.top.min) << " N, max " << fmtNum("%.1f", g.top.max) << " N\n";
   o << "  static top     " << fmtNum("%.1f", g.static_top) << " N\n";
+  o << "  max tension    " << core::tensionPeakText(r.peak, true) << "\n";
   if (r.initial_static.drifting && g.simulated > 0.0)
     o << "  drift          static x = " << fmtNum("%.4f", r.initial_static.drift_vx) << ", y = "
       << fmtNum("%.4f", r.initial_static.drift_vy) << " m/s; run mean x = "

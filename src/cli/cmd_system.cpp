@@ -13,6 +13,7 @@
 #include "cli_common.hpp"
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/io/result_io.hpp"
+#include "mooring_dynamics/core/model/utilization.hpp"
 #include "mooring_dynamics/core/solvers/system_statics.hpp"
 #include "mooring_dynamics/core/solvers/system_dynamics.hpp"
 #include "mooring_dynamics/core/solvers/vessel_statics.hpp"
@@ -60,7 +61,10 @@ void writeSystemJson(std::ostream& f, const core::SystemProblem& s, const core::
     const auto& l = r.lines[i];
     double tmin = 0.0;
     for (std::size_t j = 0; j < l.nodes.size(); ++j) tmin = j ? std::min(tmin, l.nodes[j].tension) : l.nodes[j].tension;
+    const core::TensionPeak pk = core::tensionPeak(s.materials, s.lines[i].segments, l.nodes);
     f << "    {\"name\": " << jsonText(s.lines[i].name) << ", \"nodes\": " << l.nodes.size()
+      << ", \"max_tension\": " << csvNum(pk.max_tension) << ", \"utilization\": "
+      << (pk.has_mbl ? csvNum(pk.utilization) : std::string("null"))
       << ", \"top_tension\": " << csvNum(l.topTension()) << ", \"min_tension\": " << csvNum(tmin)
       << ", \"top_force\": [" << csvNum(l.top_force_x) << ", " << csvNum(l.top_force_y) << ", "
       << csvNum(l.top_force_z) << "], \"lower_end_force\": [" << csvNum(l.anchor_force_x) << ", "
@@ -150,6 +154,8 @@ int runSystemStatic(const std::string& path, bool want_table, std::size_t stride
     out << "    " << s.lines[i].name << ": " << l.nodes.size() << " nodes, top " << fmtNum("%.1f", l.topTension())
         << ", lower end " << fmtNum("%.1f", l.nodes.empty() ? 0.0 : l.nodes.front().tension) << ", min "
         << fmtNum("%.1f", tmin) << "\n";
+    out << "      max tension " << core::tensionPeakText(core::tensionPeak(s.materials, s.lines[i].segments, l.nodes), false)
+        << "\n";
     if (want_table) out << core::staticTableText(l, stride, s.formulation);
   }
   if (!out_dir.empty()) {
@@ -213,12 +219,17 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   // Samples on the dt grid (output_interval when given): free points' positions, tops' tensions.
   const double dout = s.dynamics.output_interval > 0.0 ? s.dynamics.output_interval : s.dynamics.dt;
   std::vector<std::vector<double>> rows;
+  std::vector<core::TensionPeak> peaks(s.lines.size());
   auto sample = [&]() {
     std::vector<double> r{sim->time()};
     const auto pts = sim->points();
     for (std::size_t p = 0; p < pts.size(); ++p)
       if (s.points[p].free()) r.insert(r.end(), {pts[p].x, pts[p].y, pts[p].z});
-    for (std::size_t i = 0; i < s.lines.size(); ++i) r.push_back(sim->line(i).topTension());
+    for (std::size_t i = 0; i < s.lines.size(); ++i) {
+      const core::StaticResult li = sim->line(i);
+      r.push_back(li.topTension());
+      peaks[i].add(s.materials, s.lines[i].segments, li.nodes, sim->time());
+    }
     rows.push_back(r);
   };
   sample();
@@ -259,6 +270,7 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
     }
     out << "  " << s.lines[i].name << " top tension  min " << fmtNum("%.1f", mn) << " N, max " << fmtNum("%.1f", mx)
         << " N\n";
+    out << "  " << s.lines[i].name << " max tension  " << core::tensionPeakText(peaks[i], true) << "\n";
   }
   out << "  solver         " << sim->pointIterations() << " point iterations, " << sim->lineSteps() << " line steps\n";
   out << "  wall time      " << fmtNum("%.3g", wall) << " s, real-time factor " << fmtNum("%.3g", sim->time() / wall)

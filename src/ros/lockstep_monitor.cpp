@@ -140,6 +140,15 @@ void LockstepMonitor::onResult(const LockstepDriver::Result& r, double wall_now,
     have_state_ = true;
     min_tension_ = tmin;
     top_tension_ = state->nodes.back().tension;
+    max_tension_ = state->nodes.front().tension;
+    utilization_ = -1.0;
+    for (const auto& n : state->nodes) {
+      max_tension_ = std::max(max_tension_, n.tension);
+      const std::size_t seg = static_cast<std::size_t>(n.segment);
+      if (seg < options_.segment_mbl.size() && options_.segment_mbl[seg] > 0.0)
+        utilization_ = std::max(utilization_, n.tension / options_.segment_mbl[seg]);
+    }
+    peak_utilization_ = std::max(peak_utilization_, utilization_);
   }
 }
 
@@ -172,6 +181,9 @@ LockstepMonitor::Summary LockstepMonitor::summarise(double wall_now) {
   if (w.sim > 0.0 && rtf < options_.min_real_time_factor)
     warnings.push_back("real-time factor " + fmt(rtf, "%.2f") + " < " + fmt(options_.min_real_time_factor, "%g"));
   if (slack_now_) warnings.push_back("line slack (min tension " + fmt(min_tension_, "%.1f") + " N)");
+  if (have_state_ && utilization_ > options_.max_utilization)
+    warnings.push_back("utilization " + fmt(utilization_, "%.3f") + " > " + fmt(options_.max_utilization, "%g") +
+                       " (max tension " + fmt(max_tension_, "%.1f") + " N)");
 
   std::string msg;
   auto join = [&msg](const std::vector<std::string>& v) {
@@ -208,6 +220,9 @@ LockstepMonitor::Summary LockstepMonitor::summarise(double wall_now) {
   kv("slack now", slack_now_ ? "true" : "false");
   kv("min tension [N]", have_state_ ? fmt(min_tension_, "%.6g") : "-");
   kv("top tension [N]", have_state_ ? fmt(top_tension_, "%.6g") : "-");
+  kv("max tension [N]", have_state_ ? fmt(max_tension_, "%.6g") : "-");
+  kv("utilization (T / MBL)", have_state_ && utilization_ >= 0.0 ? fmt(utilization_, "%.4g") : "-");
+  kv("utilization (max, total)", peak_utilization_ >= 0.0 ? fmt(peak_utilization_, "%.4g") : "-");
   kv("seconds since last motion [s]", ever_received_ ? fmt(quiet, "%.3g") : "-");
   kv("last error", last_error_.empty() ? "none" : last_error_);
   kv("last error age [s]", last_error_wall_ >= 0.0 ? fmt(wall_now - last_error_wall_, "%.3g") : "-");

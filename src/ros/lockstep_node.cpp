@@ -73,6 +73,9 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
                                   "must be > 0 [s]");
   mo.min_real_time_factor = doubleParam(pnh_, "min_real_time_factor", mo.min_real_time_factor,
                                         [](double v) { return v >= 0.0; }, "must be >= 0");
+  mo.max_utilization = doubleParam(pnh_, "max_utilization", mo.max_utilization, [](double v) { return v > 0.0; },
+                                   "must be > 0 (tension over minimum breaking load)");
+  for (const core::Segment& g : problem_.segments) mo.segment_mbl.push_back(problem_.materials[g.material].mbl);
   const double diag_period = doubleParam(pnh_, "diagnostics_period", 1.0, [](double v) { return v > 0.0; },
                                          "must be > 0 [s]");
   pnh_.param("republish_when_silent", republish_when_silent_, true);

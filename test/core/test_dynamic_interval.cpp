@@ -34,6 +34,8 @@ Environment environment() {
   return env;
 }
 
+constexpr double kFrictionSpeedForTest = eq2d::kFrictionSpeed;
+
 Material chain(bool table) {
   Material m;
   m.EA = 6.44e7;
@@ -98,13 +100,20 @@ TEST(DynamicInterval, RowsAndJacobianMatchAutoDiff) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int checked = 0;
+  // mu > 0: seabed friction (ramp and Coulomb parts), and strains inside the slack ramp.
+  for (double mu : {0.0, 0.7})
   for (bool table : {false, true})
     for (const auto& off : offsets)
       for (int trial = 0; trial < 5; ++trial) {
-        const Material m = chain(table);
+        Material m = chain(table);
+        m.mu_axial = mu;
         double Y[2 * N], Yp[2 * N], Ydw[2 * N], S[N];
         randomState(rng, env, off[0], off[1], Y);
         randomState(rng, env, off[0], off[1], Yp);
+        if (mu > 0.0 && trial % 2 == 0)
+          for (int j = 0; j < 2; ++j) Y[N * j + U] = 0.8 * kFrictionSpeedForTest * u(rng);  // viscous part
+        if (mu > 0.0 && trial % 2 == 1)
+          for (int j = 0; j < 2; ++j) Y[N * j + EPS] = 0.4 * kSlackStrain * u(rng);  // inside the slack ramp
         for (double& v : Ydw) v = u(rng);
         for (double& v : S) v = 10.0 * u(rng);
         Water w[2], wp[2];
@@ -147,7 +156,7 @@ TEST(DynamicInterval, RowsAndJacobianMatchAutoDiff) {
           EXPECT_NEAR(sp[q], sp_ref[q], kValueRelTol * std::max(1.0, std::abs(sp_ref[q]))) << "spatial row " << q;
         ++checked;
       }
-  EXPECT_EQ(checked, 30);
+  EXPECT_EQ(checked, 60);
 }
 
 // The reference is not blind to what it checks: a Jacobian entry the seabed dashpot owns (row 0,

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mooring_dynamics/core/equations/equations2d_dynamic.hpp"
 #include "mooring_dynamics/core/solvers/dynamics2d.hpp"
 #include "mooring_dynamics/core/io/problem_io.hpp"
 
@@ -658,4 +659,55 @@ TEST(Dynamics2D, ThreadsMustBeOneOrTwo) {
   EXPECT_NE(p.validate().find("dynamics.threads = 3: must be 1 or 2"), std::string::npos) << p.validate();
   p.dynamics.threads = 2;
   EXPECT_EQ(p.validate(), "");
+}
+
+TEST(Dynamics2D, SphereBodyDragIsAlongTheRelativeFlowAtAnyLineAngle) {
+  // A body at a junction towed through still water at V = (1.2, -0.5) m/s, the line inclined at
+  // 0.7 rad: a sphere's drag is -1/2 rho Cd A |V| V (closed form), whatever the line's angle; a
+  // line-aligned body with cdn = cdt = Cd is not (its components are squared separately).
+  using namespace mooring_dynamics::core::eq2dyn;
+  Problem p;
+  Material m;
+  m.EA = 1e6;
+  p.materials = {m, m};
+  Body b;
+  b.wet_weight = 100.0;
+  b.diameter = 0.8;
+  b.drag = Body::Drag::Sphere;
+  b.cd = 0.7;
+  p.bodies.push_back(b);
+  MeshInterval iv;
+  iv.h = 0.0;
+  iv.bodies = {0};
+  const double phi = 0.7, Vx = 1.2, Vz = -0.5;
+  double Y[N] = {0.0};
+  Y[PHI] = phi;
+  Y[U] = Vx * std::sin(phi) + Vz * std::cos(phi);  // u along t = (sin, cos)
+  Y[V] = Vx * std::cos(phi) - Vz * std::sin(phi);  // v along n = (cos, -sin)
+  Water w;                                         // still water
+  double R[N];
+  junctionForces(p, iv, p.materials[0], p.materials[1], Y, Y, w, R);  // same node: F_b - F_a = 0
+  const double q = 0.5 * p.environment.water_density * 0.7 * 0.25 * 3.14159265358979323846 * 0.8 * 0.8;
+  const double speed = std::hypot(Vx, Vz);
+  const double kTol = 1e-9;  // the speed floor (1e-6 m/s) changes |V| by 1e-13 relative
+  EXPECT_NEAR(R[0], -q * speed * Vx, kTol);
+  EXPECT_NEAR(R[1], -q * speed * Vz - b.wet_weight, kTol);
+
+  p.bodies[0].drag = Body::Drag::LineAligned;
+  p.bodies[0].cdn = p.bodies[0].cdt = 0.7;
+  double Ra[N];
+  junctionForces(p, iv, p.materials[0], p.materials[1], Y, Y, w, Ra);
+  EXPECT_GT(std::hypot(Ra[0] - R[0], Ra[1] - R[1]), 1.0);
+
+  // Statics (eq2d::bodyLoad): the current U along +x at any line angle gives 1/2 rho Cd A |U| U
+  // along +x.
+  p.bodies[0].drag = Body::Drag::Sphere;
+  p.environment.current = {{0.0, 0.9, 0.0}, {100.0, 0.9, 0.0}};
+  for (double ph : {0.0, 0.4, 1.2}) {
+    double Pt, Pn;
+    eq2d::bodyLoad(p.environment, p.bodies[0], ph, -10.0, Pt, Pn);
+    const double Px = Pt * std::sin(ph) + Pn * std::cos(ph), Pz = Pt * std::cos(ph) - Pn * std::sin(ph);
+    EXPECT_NEAR(Px, q * 0.9 * 0.9, kTol) << ph;
+    EXPECT_NEAR(Pz, -b.wet_weight, kTol) << ph;
+  }
 }

@@ -73,6 +73,7 @@ Problem validProblem() {
 TEST(Material, LinearEA) {
   Material m;
   m.EA = 2.5e6;
+  m.compression = true;  // the law as given below zero strain (the default has none: SlackRamp)
   for (double eps : {-0.01, 0.0, 0.004, 0.3}) {
     EXPECT_NEAR(m.tension(eps), 2.5e6 * eps, kRel * 2.5e6);
     EXPECT_EQ(m.tensionSlope(eps), 2.5e6);
@@ -82,7 +83,8 @@ TEST(Material, LinearEA) {
 }
 
 TEST(Material, TensionStrainTableInterpolates) {
-  const Material m = tableMaterial();
+  Material m = tableMaterial();
+  m.compression = true;  // the table as given (the slack ramp lifts T(0) by b / 8)
   EXPECT_NEAR(m.tension(0.0), 0.0, kRel * 5000.0);
   EXPECT_NEAR(m.tension(0.005), 500.0, kRel * 5000.0);
   EXPECT_NEAR(m.tension(0.02), 3000.0, kRel * 5000.0);   // 1000 + 0.01 * 2e5
@@ -94,7 +96,8 @@ TEST(Material, TensionStrainTableInterpolates) {
 }
 
 TEST(Material, TensionStrainTableExtrapolatesWithEndSlopes) {
-  const Material m = tableMaterial();
+  Material m = tableMaterial();
+  m.compression = true;
   EXPECT_NEAR(m.tension(0.04), 7000.0, kRel * 5000.0);   // 5000 + 0.01 * 2e5
   EXPECT_NEAR(m.tension(-0.01), -1000.0, kRel * 5000.0); // 0 - 0.01 * 1e5
   EXPECT_NEAR(m.tensionSlope(0.1), 2e5, kRel * 2e5);
@@ -102,7 +105,8 @@ TEST(Material, TensionStrainTableExtrapolatesWithEndSlopes) {
 }
 
 TEST(Material, StrainAtInvertsTheTable) {
-  const Material m = tableMaterial();
+  Material m = tableMaterial();
+  m.compression = true;
   EXPECT_NEAR(m.strainAt(500.0), 0.005, kRel);
   EXPECT_NEAR(m.strainAt(3000.0), 0.02, kRel);
   EXPECT_NEAR(m.strainAt(7000.0), 0.04, kRel);    // extrapolated above
@@ -114,6 +118,38 @@ TEST(Material, StrainAtInvertsTheTable) {
       const double fd = (m.tension(eps + kFdStep) - m.tension(eps - kFdStep)) / (2 * kFdStep);
       EXPECT_NEAR(m.tensionSlope(eps), fd, kFdTol * 2e5) << "eps " << eps;
     }
+  }
+}
+
+TEST(Material, RopesAndChainsCarryNoCompression) {
+  // Default law: slackRamp of EA eps over the band b = EA kSlackStrain: exactly EA eps from
+  // eps = kSlackStrain / 2 up, exactly 0 from -kSlackStrain / 2 down, never negative, value and
+  // slope continuous at both joins.
+  for (bool table : {false, true}) {
+    Material m;
+    if (table) {
+      m = tableMaterial();  // slope 1e5 at zero strain
+    } else {
+      m.EA = 2.5e6;
+    }
+    const double k0 = table ? 1e5 : 2.5e6, b = k0 * kSlackStrain;
+    EXPECT_EQ(m.slackBand(), b);
+    EXPECT_EQ(m.tension(0.004), m.rawTension(0.004));  // taut: the law as given, bit for bit
+    EXPECT_EQ(m.tension(0.5 * kSlackStrain), m.rawTension(0.5 * kSlackStrain));
+    EXPECT_EQ(m.tension(-0.01), 0.0);
+    EXPECT_FALSE(std::signbit(m.tension(-0.01)));  // +0, never -0
+    EXPECT_EQ(m.tensionSlope(-0.01), kSlackJacobianFraction * k0);  // the slope Newton sees
+    EXPECT_NEAR(m.tension(0.0), b / 8.0, kRel * b);  // the ramp's largest lift, at zero strain
+    for (double e = -kSlackStrain; e <= kSlackStrain; e += kSlackStrain / 16.0) {
+      EXPECT_GE(m.tension(e), 0.0) << e;
+      const double h = 1e-9;
+      const double fd = (m.tension(e + h) - m.tension(e - h)) / (2.0 * h);
+      EXPECT_NEAR(m.tensionSlope(e), std::max(fd, kSlackJacobianFraction * k0), 1e-3 * k0) << e;
+      if (m.tension(e) > 0.0) EXPECT_NEAR(m.strainAt(m.tension(e)), e, 1e-12) << e;
+    }
+    EXPECT_NEAR(m.strainAt(0.0), -0.5 * kSlackStrain, 1e-15);  // where the law reaches zero
+    m.compression = true;
+    EXPECT_EQ(m.tension(-0.01), m.rawTension(-0.01));
   }
 }
 

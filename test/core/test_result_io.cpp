@@ -153,6 +153,24 @@ TEST(ResultIo, CsvEmptyResultIsHeaderOnly) {
   EXPECT_EQ(count(os.str(), "\n"), 1u);
 }
 
+TEST(ResultIo, SummaryTextGivesMaxTensionAndUtilization) {
+  // 7 nodes in segments 0, 0, 0, 1, 1, 1, 2; tensions 1000 + 123.456789012345 i: the largest at
+  // the top (node 6, s = 0.6 m), 1740.7 N. Segment 2's material has MBL 2000 N: utilization 0.870.
+  const StaticResult r = makeResult(7);
+  Problem p = makeProblem();
+  p.materials.resize(2);
+  p.materials[1].name = "wire";
+  p.materials[1].mbl = 2000.0;
+  p.segments.resize(3);
+  p.segments[2].material = 1;
+  const std::string s = staticSummaryText(p, r);
+  EXPECT_NE(s.find("max tension    1740.7 N at s = 0.60 m; utilization 0.870 of mbl 2000.0 N (wire)"),
+            std::string::npos)
+      << s;
+  p.materials[1].mbl = 0.0;
+  EXPECT_NE(staticSummaryText(p, r).find("utilization: no mbl given"), std::string::npos);
+}
+
 TEST(ResultIo, SummaryText) {
   const StaticResult r = makeResult(7);
   const std::string s = staticSummaryText(makeProblem(), r);

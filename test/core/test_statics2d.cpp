@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "mooring_dynamics/core/equations/catenary.hpp"
@@ -239,6 +240,7 @@ TEST(Statics2D, AdaptiveRelaxationRescuesAPoorStartWhereFixedRelaxationFails) {
     p.static_options.initial_guess = StaticOptions::InitialGuess::StraightLine;
     p.static_options.adaptive_relaxation = adaptive;
     p.static_options.max_iterations = 500;
+    p.materials[0].compression = true;  // the paper's law (eq. 9): without compression plain Newton settles here
     return p;
   };
   const StaticResult fixed = solveStatic(problem(false));
@@ -285,4 +287,29 @@ TEST(Statics2D, SeabedCapOfEquation35) {
   const StaticResult over = solveStatic(ridge);
   ASSERT_TRUE(over.summary.converged) << over.summary.message;
   EXPECT_GT(maxMeanReaction(ridge, over), 2.0 * kW);
+}
+
+TEST(Statics2D, SeabedFrictionDropsTheTensionByMuWTimesTheGroundedLength) {
+  // Static friction opposes the top's pull along the grounded stretch: the tension falls from the
+  // touchdown to the anchor by mu_axial w L_g (closed form). The suspended length follows from
+  // the top's vertical force, V = w L_s (no vertical load at the touchdown), the horizontal
+  // tension at the touchdown is the top's horizontal force H, so T_anchor = H - mu w (L - V / w).
+  // mu = 0.05: the pull reaches the anchor. Where friction exhausts it along the grounded length
+  // (mu = 0.3 here) the solve does not converge (docs/method.md, "Seabed friction").
+  const double mu = 0.05, L = 200.0;
+  Problem p = grounded(0.25);
+  p.materials[0].mu_axial = mu;
+  const StaticResult r = solveStatic(p);
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  const double H = r.top_force_x, V = r.top_force_z;
+  const double Lg = L - V / kW;
+  ASSERT_GT(Lg, 50.0);
+  const double expected = H - mu * kW * Lg;
+  ASSERT_GT(expected, 0.2 * H);  // the pull reaches the anchor: the closed form applies
+  std::printf("friction: anchor tension %.2f N, closed form %.2f N (H %.1f N, L_g %.2f m)\n",
+              r.nodes.front().tension, expected, H, Lg);
+  EXPECT_NEAR(r.nodes.front().tension, expected, kCatenaryRelTol * r.topTension());
+  // The frictionless line carries H to the anchor: the friction moved it by far more than the tolerance.
+  const StaticResult r0 = solveStatic(grounded(0.25));
+  EXPECT_GT(r0.nodes.front().tension - r.nodes.front().tension, 10.0 * kCatenaryRelTol * r.topTension());
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "mooring_dynamics/core/solvers/dynamics3d.hpp"
@@ -173,4 +174,78 @@ top:
   Problem q = p;
   q.dynamics.top_motion.type = TopMotion::Type::Sinusoid;
   EXPECT_NE(q.validate().find("dynamics.top_motion"), std::string::npos) << q.validate();
+}
+
+namespace {
+
+// A sphere on a weightless, dragless line in a uniform current: the line is straight and the top
+// force is the body's net buoyancy B (up) plus its drag 1/2 rho Cd A U^2 along the current.
+Problem sphereOnWeightlessLine(Formulation f, double B, double U, double dir, Body::Drag drag) {
+  Problem p = subsurface(B);
+  p.formulation = f;
+  Material& m = p.materials[0];
+  m.wet_weight = 0.0;
+  m.cdn = 0.0;
+  m.cdt = 0.0;
+  m.EA = 1.0e10;  // inextensible to the tolerance: the closed form has no strain
+  Body& b = p.bodies[0];
+  b.drag = drag;
+  b.cd = 0.6;
+  b.cdn = 0.6;
+  b.cdt = 0.6;
+  p.environment.current = {{0.0, U, dir}, {200.0, U, dir}};
+  return p;
+}
+
+}  // namespace
+
+TEST(Subsurface, SphereDragFollowsTheFlowWhateverTheLineAngle) {
+  // The line leans at atan(D / B) from the vertical, about 24 degrees here: a line-aligned body
+  // with cdn = cdt = Cd would feel a different force (its two components are squared separately),
+  // so the sphere's closed form distinguishes the two laws.
+  const double B = 5000.0, U = 1.5, dir = 0.3, rho = 1025.0;
+  const double D = 0.5 * rho * 0.6 * 0.25 * kPi * 1.2 * 1.2 * U * U;
+  const double T = std::hypot(D, B);
+  {
+    const Formulation f = Formulation::ThreeD;  // (a body top is a 3-D end; 2-D: test_dynamics2d)
+    const double d = dir;
+    const Problem p = sphereOnWeightlessLine(f, B, U, d, Body::Drag::Sphere);
+    const StaticResult r = solveStatic3D(p);
+    ASSERT_TRUE(r.summary.converged) << r.summary.message;
+    EXPECT_NEAR(r.top_force_x, D * std::cos(d), kExactRelTol * T);
+    EXPECT_NEAR(r.top_force_y, D * std::sin(d), kExactRelTol * T);
+    EXPECT_NEAR(r.top_force_z, B, kExactRelTol * T);
+    EXPECT_NEAR(r.topTension(), T, kExactRelTol * T);
+    // Straight line at the angle atan(D / B) from the vertical.
+    const auto& top = r.nodes.back();
+    EXPECT_NEAR(std::hypot(top.x, top.y) / (top.z - p.anchor_z), D / B, 1e-5);
+
+    const Problem pa = sphereOnWeightlessLine(f, B, U, d, Body::Drag::LineAligned);
+    const StaticResult ra = solveStatic3D(pa);
+    ASSERT_TRUE(ra.summary.converged) << ra.summary.message;
+    std::printf("sphere drag: horizontal top force %.3f N (closed form %.3f N); line-aligned body %.3f N\n",
+                std::hypot(r.top_force_x, r.top_force_y), D, std::hypot(ra.top_force_x, ra.top_force_y));
+    EXPECT_GT(std::abs(std::hypot(ra.top_force_x, ra.top_force_y) - D), 100.0 * kExactRelTol * T);
+  }
+}
+
+TEST(Subsurface, SphereDragKeyReadsAndExcludesTheLineAlignedKeys) {
+  const std::string base = "name: s\nmodel: 3d\nenvironment: {depth: 200}\n"
+                           "materials: {wire: {EA: 1e7, EI: 0.01, GJ: 0.01, mass: 1, wet_weight: 8, diameter: 0.012, "
+                           "cdn: 1.2, cdt: 0.01}}\n"
+                           "line: [{material: wire, length: 100, spacing: 2}]\n"
+                           "anchor: {x: 0, z: -200}\ntop: {body: buoy}\n";
+  const Problem p = loadProblemFromString(base + "bodies: {buoy: {mass: 500, wet_weight: -5000, diameter: 1.2, cd: 0.6}}\n");
+  EXPECT_EQ(p.bodies[0].drag, Body::Drag::Sphere);
+  EXPECT_EQ(p.bodies[0].cd, 0.6);
+  const Problem q =
+      loadProblemFromString(base + "bodies: {buoy: {mass: 500, wet_weight: -5000, diameter: 1.2, cdn: 1, cdt: 0.2}}\n");
+  EXPECT_EQ(q.bodies[0].drag, Body::Drag::LineAligned);
+  try {
+    loadProblemFromString(base + "bodies: {buoy: {mass: 500, wet_weight: -5000, diameter: 1.2, cd: 0.6, cdn: 1}}\n");
+    ADD_FAILURE() << "cd with cdn accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies.buoy.cdn"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not both"), std::string::npos) << e.what();
+  }
 }

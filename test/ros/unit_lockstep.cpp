@@ -363,6 +363,45 @@ TEST(LockstepMonitor, SlackEvents) {
     }
 }
 
+TEST(LockstepMonitor, UtilizationAboveTheLimitWarns) {
+  // Segment 0 with MBL 1000 N, segment 1 without: utilization is the largest T / MBL over the
+  // nodes of segment 0 (by hand: 700 / 1000), whatever the larger tension in segment 1.
+  ros_bridge::MonitorOptions mo;
+  mo.max_utilization = 0.6;
+  mo.segment_mbl = {1000.0, 0.0};
+  LockstepMonitor m(mo, 0.0);
+  core::StaticResult st;
+  st.nodes.resize(4);
+  const double T[] = {700.0, 500.0, 900.0, 800.0};
+  for (int i = 0; i < 4; ++i) {
+    st.nodes[i].tension = T[i];
+    st.nodes[i].segment = i < 2 ? 0 : 1;
+  }
+  LockstepDriver::Result r;
+  r.outcome = O::Advanced;
+  r.publish = true;
+  m.onMotionReceived(0.0);
+  m.onResult(r, 0.0, 0.0, &st, 0.0);
+  auto s = m.summarise(0.1);
+  EXPECT_EQ(s.level, LockstepMonitor::WARN);
+  EXPECT_NE(s.message.find("utilization 0.700 > 0.6 (max tension 900.0 N)"), std::string::npos) << s.message;
+  std::string now, peak;
+  for (const auto& kv : s.values) {
+    if (kv.first == "utilization (T / MBL)") now = kv.second;
+    if (kv.first == "utilization (max, total)") peak = kv.second;
+  }
+  EXPECT_EQ(now, "0.7");
+  EXPECT_EQ(peak, "0.7");
+  // Below the limit: no warning from it, the run's peak kept.
+  st.nodes[0].tension = 300.0;
+  m.onMotionReceived(0.1);
+  m.onResult(r, 0.1, 0.0, &st, 0.0);
+  s = m.summarise(0.2);
+  EXPECT_EQ(s.message.find("utilization"), std::string::npos) << s.message;
+  for (const auto& kv : s.values)
+    if (kv.first == "utilization (max, total)") EXPECT_EQ(kv.second, "0.7");
+}
+
 TEST(Markers, BodiesOfSTether) {
   const core::Problem p = core::loadProblemFromFile(std::string(MD_SOURCE_DIR) + "/config/s_tether.yaml");
   const auto b = ros_bridge::bodyMarks(p);

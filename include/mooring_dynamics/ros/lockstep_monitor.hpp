@@ -9,7 +9,9 @@
 //          be solved at a requested top (run not started / sample dropped)
 //   WARN   no motion for more than `motion_timeout` (silent source, or none yet); input dropped
 //          (NaN, old stamp, unknown frame, jump); re-initialised (bag loop, gap, reset); step cuts;
-//          real-time factor below `min_real_time_factor`; the line is slack now
+//          real-time factor below `min_real_time_factor`; the line is slack now; the utilization
+//          (largest tension over the material's minimum breaking load, Material::mbl) of the
+//          published state is above `max_utilization`
 //   OK     otherwise
 // The message lists the reasons of the level, most severe first.
 #pragma once
@@ -29,6 +31,12 @@ struct MonitorOptions {
   double motion_timeout = 1.0;        ///< [s, wall] no motion for longer than this: WARN (silent source)
   double min_real_time_factor = 1.0;  ///< window real-time factor below this: WARN (cannot keep up)
   std::string line_name;              ///< the line, named in failure messages
+  /// Utilization (T / MBL) of the published state above this: WARN. The default is the inverse of
+  /// the intact safety factor 1.67 that mooring design codes ask of a dynamic analysis.
+  double max_utilization = 0.6;
+  /// Minimum breaking load of each segment's material [N] (index = NodeState::segment); 0 or a
+  /// missing entry: none given, no utilization there.
+  std::vector<double> segment_mbl;
 };
 
 /// Keys of the counts in the diagnostics values, each reported as "<key> (window / total)".
@@ -113,6 +121,9 @@ class LockstepMonitor {
   bool slack_now_ = false;
   bool have_state_ = false;
   double min_tension_ = 0.0, top_tension_ = 0.0, solver_time_ = 0.0;
+  double max_tension_ = 0.0;          ///< largest tension of the last published state [N]
+  double utilization_ = -1.0;         ///< its utilization (< 0: no MBL given) [-]
+  double peak_utilization_ = -1.0;    ///< largest utilization over the run [-]
 };
 
 }  // namespace ros_bridge

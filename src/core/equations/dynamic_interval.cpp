@@ -54,6 +54,10 @@ void nodeLoad(const Environment& env, const Material& m, const NodeView& nv, dou
   const double qt = signedSquare(ur), qn = signedSquare(vr);
   f1 = -weight * c - Kt * qt * stretch;
   f2 = weight * s - Kn * qn * stretch;
+  // Seabed friction along the line, -mu F ramp(u) (eq2d::frictionRamp).
+  const bool friction = m.mu_axial > 0.0 && F > 0.0;
+  const double ramp = friction ? eq2d::frictionRamp(y[U]) : 0.0;
+  if (friction) f1 -= m.mu_axial * F * ramp;
   if (!df1) return;
   // Gradients: d(u|u|) = 2 |u| du; dstretch/deps = 1 / (2 stretch).
   const double gt = Kt * 2.0 * std::abs(ur) * stretch, gn = Kn * 2.0 * std::abs(vr) * stretch;
@@ -72,6 +76,10 @@ void nodeLoad(const Environment& env, const Material& m, const NodeView& nv, dou
   df2[V] -= gn;                        // dvr/dv = 1
   df2[PHI] -= gn * wt;                 // dvr/dphi = -dwn/dphi = wt
   df2[Z] -= gn * (-w.dwx_dz * c);      // dvr/dz = -c dwx/dz
+  if (friction) {
+    for (int k = 0; k < N; ++k) df1[k] -= m.mu_axial * ramp * dF[k];
+    df1[U] -= m.mu_axial * F * eq2d::frictionRampSlope(y[U]);
+  }
 }
 
 /// Inertia rows 0-3 per unit length at a node (eq. 8 as in `inertia`), I = M(Y) Yd~, and when

@@ -142,7 +142,7 @@ void readEnvironment(const Item& it, Environment& env, const std::string& base_d
 
 Material readMaterial(const Item& it, const std::string& name) {
   const Map m(it, {"EA", "tension_strain", "EI", "GJ", "mass", "added_mass", "wet_weight", "diameter",
-                   "cdn", "cdt", "max_strain", "mbl"});
+                   "cdn", "cdt", "max_strain", "mbl", "compression", "mu_axial", "mu_lateral"});
   Material mat;
   mat.name = name;
   if (m.has("EA") && m.has("tension_strain"))
@@ -178,19 +178,34 @@ Material readMaterial(const Item& it, const std::string& name) {
   mat.cdt = m.number("cdt", Range::NonNegative);
   mat.max_strain = m.number("max_strain", mat.max_strain, Range::Positive);
   mat.mbl = m.number("mbl", 0.0, Range::Positive);
+  if (m.has("compression")) mat.compression = readBool(m.at("compression"));
+  mat.mu_axial = m.number("mu_axial", 0.0, Range::NonNegative);
+  mat.mu_lateral = m.number("mu_lateral", 0.0, Range::NonNegative);
   return mat;
 }
 
 Body readBody(const Item& it, const std::string& name) {
-  const Map m(it, {"mass", "added_mass", "wet_weight", "diameter", "cdn", "cdt"});
+  const Map m(it, {"mass", "added_mass", "wet_weight", "diameter", "cd", "cdn", "cdt"});
   Body b;
   b.name = name;
   b.mass = m.number("mass", Range::NonNegative);
   b.added_mass = m.number("added_mass", 0.0, Range::NonNegative);
   b.wet_weight = m.number("wet_weight", Range::Any);
   b.diameter = m.number("diameter", Range::NonNegative);
-  b.cdn = m.number("cdn", Range::NonNegative);
-  b.cdt = m.number("cdt", Range::NonNegative);
+  // A sphere (`cd`) or a body aligned with the line (`cdn` and `cdt`): one form, not both.
+  const bool sphere = m.has("cd");
+  if (sphere && (m.has("cdn") || m.has("cdt")))
+    throw ProblemError(m.sub(m.has("cdn") ? "cdn" : "cdt") + ": give cd (a sphere: drag along the relative flow) "
+                       "or cdn and cdt (a body aligned with the line), not both" +
+                       lineSuffix(m.at("cd").mark));
+  if (sphere) {
+    b.drag = Body::Drag::Sphere;
+    b.cd = m.number("cd", Range::NonNegative);
+  } else {
+    b.drag = Body::Drag::LineAligned;
+    b.cdn = m.number("cdn", Range::NonNegative);
+    b.cdt = m.number("cdt", Range::NonNegative);
+  }
   return b;
 }
 

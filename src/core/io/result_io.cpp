@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "mooring_dynamics/core/model/utilization.hpp"
+
 namespace mooring_dynamics {
 namespace core {
 namespace {
@@ -188,6 +190,9 @@ std::string staticSummaryText(const Problem& problem, const StaticResult& r) {
   if (three_d) o << "  model          3-D (N = 13 with Euler parameters)\n";
   o << "  min tension    " << fmt("%12.1f", mn->tension) << " N   at s = " << fmt("%.2f", mn->s) << " m (node "
     << (mn - r.nodes.begin()) << ")\n";
+  o << "  max tension    " << tensionPeakText(tensionPeak(problem.materials, problem.segments, r.nodes), false) << "\n";
+  const double slack = slackLength(problem.materials, problem.segments, r.nodes);
+  if (slack > 0.0) o << "  slack line     " << fmt("%.2f", slack) << " m (tension below the slack ramp)\n";
   if (problem.top.type == TopBoundary::Type::Buoy) o << "  buoy draft     " << fmt("%.3f", r.buoy_draft) << " m\n";
   if (r.drifting)
     o << "  drift velocity x = " << fmt("%.4f", r.drift_vx) << ", y = " << fmt("%.4f", r.drift_vy) << " m/s ("

@@ -33,17 +33,39 @@ bool finite(double v) { return std::isfinite(v); }
 
 // --- Material --------------------------------------------------------------------------------
 
-double Material::tension(double eps) const {
+double Material::rawTension(double eps) const {
   if (tension_strain.empty()) return EA * eps;
   return interpolateTable(tension_strain, eps);
 }
 
-double Material::tensionSlope(double eps) const {
+double Material::rawTensionSlope(double eps) const {
   if (tension_strain.empty()) return EA;
   return interpolateTableSlope(tension_strain, eps);
 }
 
+double Material::slackBand() const {
+  return kSlackStrain * (tension_strain.empty() ? EA : interpolateTableSlope(tension_strain, 0.0));
+}
+
+double Material::tension(double eps) const {
+  if (compression) return rawTension(eps);
+  const double T = rawTension(eps);
+  return slackRamp(T, T, slackBand());
+}
+
+double Material::tensionSlope(double eps) const {
+  if (compression) return rawTensionSlope(eps);
+  const double T = rawTension(eps), b = slackBand();
+  if (T >= 0.5 * b) return rawTensionSlope(eps);
+  return std::max((T + 0.5 * b) / b, kSlackJacobianFraction) * rawTensionSlope(eps);
+}
+
 double Material::strainAt(double T) const {
+  if (!compression) {
+    // Invert the ramp: the raw tension whose rounded value is T (-b/2 where it reaches zero).
+    const double b = slackBand();
+    if (T < 0.5 * b) T = T > 0.0 ? std::sqrt(2.0 * b * T) - 0.5 * b : -0.5 * b;
+  }
   if (tension_strain.empty()) return T / EA;
   // Invert the increasing piecewise-linear table (extrapolated linearly at both ends).
   std::vector<std::pair<double, double>> inverse;
@@ -335,6 +357,9 @@ std::string validateMaterial(const Material& m) {
   if (!(e = check(finite(m.cdt) && m.cdt >= 0.0, k + "cdt", m.cdt, "must be >= 0")).empty()) return e;
   if (!(e = check(finite(m.max_strain) && m.max_strain > 0.0, k + "max_strain", m.max_strain, "must be > 0")).empty()) return e;
   if (!(e = check(finite(m.mbl) && m.mbl >= 0.0, k + "mbl", m.mbl, "must be > 0 (or 0 when not given)")).empty()) return e;
+  if (!(e = check(finite(m.mu_axial) && m.mu_axial >= 0.0, k + "mu_axial", m.mu_axial, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(m.mu_lateral) && m.mu_lateral >= 0.0, k + "mu_lateral", m.mu_lateral, "must be >= 0")).empty())
+    return e;
   return {};
 }
 
@@ -345,6 +370,7 @@ std::string validateBody(const Body& b) {
   if (!(e = check(finite(b.added_mass) && b.added_mass >= 0.0, k + "added_mass", b.added_mass, "must be >= 0")).empty()) return e;
   if (!(e = check(finite(b.wet_weight), k + "wet_weight", b.wet_weight, "must be finite")).empty()) return e;
   if (!(e = check(finite(b.diameter) && b.diameter >= 0.0, k + "diameter", b.diameter, "must be >= 0")).empty()) return e;
+  if (!(e = check(finite(b.cd) && b.cd >= 0.0, k + "cd", b.cd, "must be >= 0")).empty()) return e;
   if (!(e = check(finite(b.cdn) && b.cdn >= 0.0, k + "cdn", b.cdn, "must be >= 0")).empty()) return e;
   if (!(e = check(finite(b.cdt) && b.cdt >= 0.0, k + "cdt", b.cdt, "must be >= 0")).empty()) return e;
   return {};

@@ -547,7 +547,7 @@ void balanceThreads(DynamicSolver2D::Impl& im) {
 void setErrorScales(DynamicSolver2D::Impl& im, const Problem& problem) {
   double Tc = 1.0, stiffest = 0.0;
   for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
-  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
+  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.rawTensionSlope(0.0));
   im.chi[EPS] = Tc / stiffest;
   im.chi[SN] = Tc;
   im.chi[U] = im.chi[V] = 1.0;  // [m/s]

@@ -348,7 +348,7 @@ void startState(DynamicSolver3D::Impl& im, const Eigen::VectorXd& Y, bool moving
 void setErrorScales(DynamicSolver3D::Impl& im, const Problem& problem) {
   double Tc = 1.0, stiffest = 0.0;
   for (const auto& ns : im.statics.nodes) Tc = std::max(Tc, std::abs(ns.tension));
-  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
+  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.rawTensionSlope(0.0));
   im.chi[EPS] = Tc / stiffest;
   im.chi[S2] = im.chi[S3] = Tc;
   im.chi[U1] = im.chi[U2] = im.chi[U3] = 1.0;  // [m/s]

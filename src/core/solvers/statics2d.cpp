@@ -39,7 +39,7 @@ StaticSystem2D::StaticSystem2D(const Problem& problem, const Mesh& mesh)
   Tc = std::max(Tc, upper_->characteristicForce());  // a force top's force
   Tc = std::max(Tc, 1.0);
   double stiffest = 0.0;
-  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
+  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.rawTensionSlope(0.0));
   const double L = problem.totalLength();
   chi_[EPS] = Tc / stiffest;  // strain giving the characteristic tension on the stiffest material
   chi_[SN] = Tc;

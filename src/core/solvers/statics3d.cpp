@@ -46,7 +46,7 @@ StaticSystem3D::StaticSystem3D(const Problem& problem, const Mesh& mesh, const d
   Tc = std::max(Tc, upper_->characteristicForce());  // a force top's force
   Tc = std::max(Tc, 1.0);
   double stiffest = 0.0;
-  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.tensionSlope(0.0));
+  for (const auto& m : problem.materials) stiffest = std::max(stiffest, m.rawTensionSlope(0.0));
   const double L = problem.totalLength();
   // chi_m of eq. 39, as in 2-D.
   chi_[EPS] = Tc / stiffest;
@@ -204,7 +204,7 @@ Problem planarProjection(const Problem& p, double psi) {
     p.environment.currentAt(std::min(0.0, p.anchor_z + p.totalLength()), ux, uy);
     const double U = ux * c + uy * s;
     q.top.type = TopBoundary::Type::Force;
-    q.top.fx = 0.5 * p.environment.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter * b.cdn * U * std::abs(U);
+    q.top.fx = 0.5 * p.environment.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter * b.isotropicCd() * U * std::abs(U);
     q.top.fz = -b.wet_weight;
     q.formulation = Formulation::TwoD;
   }

@@ -178,7 +178,7 @@ struct SystemDynamics::Impl {
       env.currentAt(x[2], ux, uy);
       const double r[3] = {ux - v[0], uy - v[1], -v[2]};
       const double rm = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-      const double q = 0.5 * env.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter * b.cdn;
+      const double q = 0.5 * env.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter * b.isotropicCd();
       for (int i = 0; i < 3; ++i) F[i] = q * rm * r[i];
       F[2] -= b.wet_weight;
     }

@@ -41,7 +41,7 @@ void pointLoad(const SystemProblem& s, const SystemPoint& pt, const double* X, d
     const Body& b = s.bodies[pt.body];
     double ux, uy;
     s.environment.currentAt(X[2], ux, uy);
-    const double q = 0.5 * s.environment.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter * b.cdn;
+    const double q = 0.5 * s.environment.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter * b.isotropicCd();
     const double U = std::hypot(ux, uy);
     F[0] = q * U * ux;
     F[1] = q * U * uy;

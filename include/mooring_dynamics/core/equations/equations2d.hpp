@@ -26,11 +26,16 @@ constexpr int N = 6;
 enum Var { EPS = 0, SN = 1, PHI = 2, OMEGA = 3, X = 4, Z = 5 };
 constexpr double kPi = 3.14159265358979323846;
 
-/// T(eps) for a material, in the scalar type.
+/// T(eps) for a material, in the scalar type (Material::tension): the law as given, through the
+/// slack ramp unless the material carries compression.
 template <class S>
 S tension(const Material& m, const S& eps) {
-  if (m.tension_strain.empty()) return m.EA * eps;
-  return interpolateTable(m.tension_strain, eps);
+  if (m.compression) {
+    if (m.tension_strain.empty()) return m.EA * eps;
+    return interpolateTable(m.tension_strain, eps);
+  }
+  const S T = m.tension_strain.empty() ? S(m.EA * eps) : interpolateTable(m.tension_strain, eps);
+  return slackRamp(T, value(T), m.slackBand());
 }
 
 /// First-order expansion around the current value: f + df (x - value(x)). Lets functions
@@ -106,9 +111,49 @@ S currentX(const Environment& env, const S& z) {
   return linearized(ux0, (uxp - uxm) / (2.0 * dz), z);
 }
 
+/// Sliding speed below which dynamic seabed friction is viscous [m/s]: the Coulomb force
+/// -mu F_bot v / |v| is replaced by -mu F_bot v / v_f for |v| < v_f (docs/method.md, "Seabed
+/// friction"). A stick-slip model would need a state per node and an event in the Newton
+/// iteration; the linear ramp keeps the rows smooth enough for Newton and differs from Coulomb
+/// only while a grounded node creeps slower than 1 cm/s.
+constexpr double kFrictionSpeed = 0.01;
+
+/// The regularized sign of a sliding velocity v [m/s]: v / v_f below kFrictionSpeed, +-1 above.
+template <class S>
+S frictionRamp(const S& v) {
+  const double a = value(v);
+  if (a > kFrictionSpeed) return 0.0 * v + 1.0;
+  if (a < -kFrictionSpeed) return 0.0 * v - 1.0;
+  return v / kFrictionSpeed;
+}
+inline double frictionRampSlope(double v) { return std::abs(v) > kFrictionSpeed ? 0.0 : 1.0 / kFrictionSpeed; }
+
+/// Tension over which the static seabed friction of a grounded line is mobilized: the friction
+/// of kStaticFrictionLength of line (mu_axial w_o times this length) [m]. See staticFriction.
+constexpr double kStaticFrictionLength = 1.0;
+
+/// Static axial seabed friction per unit length along t [N/m] (docs/method.md, "Seabed
+/// friction"): the line is taken as laid from the anchor and pulled toward the top, so Coulomb
+/// friction -mu_axial F_bot opposes that pull along the grounded length; F_bot is the nominal
+/// reaction w_o times the contact fraction (distributedLoad). It is mobilized by the
+/// tension that pulls the line: a smooth step from 0 at T <= 0 to 1 at T >= T_f = mu_axial w_o
+/// kStaticFrictionLength (3x^2 - 2x^3 between), so a stretch the pull never reaches stays slack
+/// with no friction instead of being pushed toward the anchor.
+template <class S>
+S staticFriction(const Material& m, const S& eps, const S& Fbot) {
+  const S T = tension(m, eps);
+  const double Tf = m.mu_axial * std::max(m.wet_weight, 0.0) * kStaticFrictionLength;
+  const double Tv = value(T);
+  if (!(Tv > 0.0) || !(Tf > 0.0)) return 0.0 * Fbot;
+  if (Tv >= Tf) return -m.mu_axial * Fbot;
+  const S x = T / Tf;
+  return -m.mu_axial * Fbot * x * x * (3.0 - 2.0 * x);
+}
+
 /// Distributed static load per unit unstretched length at a node, resolved on the local frame:
 /// f1 along t, f2 along n (the F terms of eq. 10 for the static case). Fbot is the seabed
-/// reaction acting on this stretch of line [N/m].
+/// reaction acting on this stretch of line [N/m]; with mu_axial > 0 its axial friction
+/// (staticFriction) is added to f1.
 template <class S>
 void distributedLoad(const Environment& env, const Material& m, const S* Y, const S& Fbot, S& f1, S& f2) {
   using std::cos;
@@ -125,19 +170,39 @@ void distributedLoad(const Environment& env, const Material& m, const S* Y, cons
   const double rho = env.water_density;
   f1 = -w * c - 0.5 * rho * m.diameter * kPi * m.cdt * signedSquare(ur) * stretch;
   f2 = w * s - 0.5 * rho * m.diameter * m.cdn * signedSquare(vr) * stretch;
+  // Static friction on the nominal reaction w_o, ramped in over the contact onset: the spring's
+  // reaction would couple the friction to the grounded line's odd-even mode of the nodal
+  // elevations (see seabedForces), and Newton then cycles.
+  if (m.mu_axial > 0.0 && value(Fbot) > 0.0) {
+    const S reaction = std::max(m.wet_weight, 0.0) * contactFraction(env, Y[X], Y[Z], contactOnset(env, m));
+    f1 = f1 + staticFriction(m, eps, reaction);
+  }
 }
 
+/// Regularisation of a point body's relative speed |r| = sqrt(r.r + delta^2) in its quadratic
+/// sphere drag [m/s]: keeps the drag differentiable at zero relative velocity; it changes the drag
+/// by less than rho Cd A delta |r| / 2, below 1e-3 N for any body here.
+constexpr double kBodySpeedFloor = 1e-6;
+
 /// Concentrated load of an inline body at a junction with inclination phi and elevation z,
-/// resolved on t (Pt) and n (Pn) [N].
+/// resolved on t (Pt) and n (Pn) [N]. A sphere's drag 1/2 rho Cd A |U| U acts along the current
+/// (the statics' relative flow is the current, horizontal); a line-aligned body's splits along t
+/// and n.
 template <class S>
 void bodyLoad(const Environment& env, const Body& b, const S& phi, const S& z, S& Pt, S& Pn) {
   using std::cos;
   using std::sin;
   const S c = cos(phi), s = sin(phi);
   const S U = currentX(env, z);
-  const S Ut = U * s, Un = U * c;  // water velocity along t and n
   const double area = 0.25 * kPi * b.diameter * b.diameter;
   const double q = 0.5 * env.water_density * area;
+  if (b.drag == Body::Drag::Sphere) {
+    const S Fx = q * b.cd * signedSquare(U);  // force (Fx, -W) resolved on t = (s, c), n = (c, -s)
+    Pt = -b.wet_weight * c + Fx * s;
+    Pn = b.wet_weight * s + Fx * c;
+    return;
+  }
+  const S Ut = U * s, Un = U * c;  // water velocity along t and n
   Pt = -b.wet_weight * c + q * b.cdt * signedSquare(Ut);
   Pn = b.wet_weight * s + q * b.cdn * signedSquare(Un);
 }

@@ -76,8 +76,8 @@ void internalForce(const Material& m, const S* Y, S& Fx, S& Fz) {
 }
 
 /// Distributed load per unit unstretched length at a node, along t (f1) and n (f2): wet weight
-/// less the seabed reaction (eqs. 35-36, no static cap) and drag on the velocity relative to the
-/// water (eqs. 1-2).
+/// less the seabed reaction (eqs. 35-36, no static cap), drag on the velocity relative to the
+/// water (eqs. 1-2), and the seabed's axial friction on the grounded line.
 template <class S>
 void distributedLoad(const Environment& env, const Material& m, const S* Y, const Water& w, const S& Fbot,
                      S& f1, S& f2) {
@@ -94,6 +94,8 @@ void distributedLoad(const Environment& env, const Material& m, const S* Y, cons
   const S weight = m.wet_weight - Fbot;
   f1 = -weight * c - 0.5 * rho * m.diameter * eq2d::kPi * m.cdt * signedSquare(ur) * stretch;
   f2 = weight * s - 0.5 * rho * m.diameter * m.cdn * signedSquare(vr) * stretch;
+  // Seabed friction along the line on the sliding velocity u (docs/method.md, "Seabed friction").
+  if (m.mu_axial > 0.0 && value(Fbot) > 0.0) f1 = f1 - m.mu_axial * Fbot * eq2d::frictionRamp(Y[U]);
 }
 
 /// Seabed reaction per unit length at a node: spring on the penetration (eq. 35, onset smoothed
@@ -175,10 +177,18 @@ void junctionForces(const Problem& p, const MeshInterval& iv, const Material& ma
   const S c = cos(phi), s = sin(phi);
   for (std::size_t k : iv.bodies) {
     const Body& b = p.bodies[k];
-    // Drag on the velocity of the water relative to the body, split along and across the line.
+    // Drag on the velocity of the water relative to the body: along it (a sphere), or split along
+    // and across the line (a line-aligned body).
     const S rx = waterX(w, Ya) - Vx, rz = w.wz - Vz;
-    const S rt = rx * s + rz * c, rn = rx * c - rz * s;
     const double q = 0.5 * p.environment.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter;
+    if (b.drag == Body::Drag::Sphere) {
+      using std::sqrt;
+      const S rm = sqrt(rx * rx + rz * rz + eq2d::kBodySpeedFloor * eq2d::kBodySpeedFloor);
+      Px += q * b.cd * rm * rx;
+      Pz += q * b.cd * rm * rz - b.wet_weight;
+      continue;
+    }
+    const S rt = rx * s + rz * c, rn = rx * c - rz * s;
     const S dt = q * b.cdt * signedSquare(rt), dn = q * b.cdn * signedSquare(rn);
     Px += dt * s + dn * c;
     Pz += dt * c - dn * s - b.wet_weight;

@@ -109,6 +109,24 @@ S seabedReaction(const Environment& env, const Material& m, const S* Yn, const S
   return spring - env.seabed.damping * contactFraction(env, Yn, delta) * Vz;
 }
 
+/// Adds the seabed's Coulomb friction on a grounded node to its load g (local components) [N/m]:
+/// -mu_axial F_bot ramp(u1) along the tangent e1 and -mu_lateral F_bot ramp(v_l) along the
+/// horizontal direction l = e1 x z across the line, v_l the node's velocity along l, ramp the
+/// regularized sign of eq2d::frictionRamp. In statics the velocities are zero and so is this.
+template <class S>
+void addSeabedFriction(const Material& m, const S* Yn, const S* R, const S& Fbot, S* g) {
+  using std::sqrt;
+  if (m.mu_axial > 0.0) g[0] = g[0] - m.mu_axial * Fbot * eq2d::frictionRamp(Yn[U1]);
+  if (!(m.mu_lateral > 0.0)) return;
+  const S nl = sqrt(R[7] * R[7] + R[8] * R[8]);  // |e1 x z|: 0 for a vertical line
+  if (!(value(nl) > 1e-9)) return;
+  const S l2 = -R[8] / nl, l3 = R[7] / nl;  // l in local components (0, l2, l3)
+  const S vl = Yn[U2] * l2 + Yn[U3] * l3;
+  const S f = m.mu_lateral * Fbot * eq2d::frictionRamp(vl);
+  g[1] = g[1] - f * l2;
+  g[2] = g[2] - f * l3;
+}
+
 /// Distributed load per unit unstretched length at a node, local components g = (g1, g2, g3):
 /// wet weight less the seabed reaction (vertical), tangential drag 1/2 rho pi d Cdt |v_rt| v_rt
 /// sqrt(1 + eps) and normal drag 1/2 rho d Cdn |v_rn| v_rn sqrt(1 + eps) on the velocity relative
@@ -130,6 +148,7 @@ void distributedLoad(const Environment& env, const Material& m, const S* Yn, con
   g[0] = -weight * R[6] - 0.5 * rho * m.diameter * eq2d::kPi * m.cdt * signedSquare(vr1) * stretch;
   g[1] = -weight * R[7] - cn * vr2;
   g[2] = -weight * R[8] - cn * vr3;
+  if ((m.mu_axial > 0.0 || m.mu_lateral > 0.0) && value(Fbot) > 0.0) addSeabedFriction(m, Yn, R, Fbot, g);
 }
 
 /// Internal force F = R f in the problem frame [N] (the force the line above a section exerts
@@ -252,11 +271,19 @@ void intervalInertia(const Environment& env, const Material& mat, double h, cons
 }
 
 /// Adds a point body's load [N] to P (problem frame): wet weight, and drag on the water velocity
-/// relative to the body `r`, split along the unit tangent `t` (cdt) and across it (cdn), on the
-/// projected area of the body's equivalent sphere.
+/// relative to the body `r` on the projected area of the body's equivalent sphere: along r for a
+/// sphere (1/2 rho Cd A |r| r, isotropic), or split along the unit tangent `t` (cdt) and across it
+/// (cdn) for a line-aligned body.
 template <class S>
 void addBodyLoad(const Environment& env, const Body& b, const S* t, const S* r, S* P) {
   using std::sqrt;
+  if (b.drag == Body::Drag::Sphere) {
+    const S rm = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + eq2d::kBodySpeedFloor * eq2d::kBodySpeedFloor);
+    const double q = 0.5 * env.water_density * 0.25 * eq2d::kPi * b.diameter * b.diameter * b.cd;
+    for (int i = 0; i < 3; ++i) P[i] = P[i] + q * rm * r[i];
+    P[2] = P[2] - b.wet_weight;
+    return;
+  }
   const S rt = r[0] * t[0] + r[1] * t[1] + r[2] * t[2];
   const S rn[3] = {r[0] - rt * t[0], r[1] - rt * t[1], r[2] - rt * t[2]};
   const S rnm = sqrt(rn[0] * rn[0] + rn[1] * rn[1] + rn[2] * rn[2] + kDragSpeedFloor * kDragSpeedFloor);

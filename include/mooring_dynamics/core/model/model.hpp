@@ -17,7 +17,48 @@
 namespace mooring_dynamics {
 namespace core {
 
+/// Strain over which a line that carries no compression goes from slack to taut [-]: the law is
+/// rounded over |eps_raw| < kSlackStrain / 2 around its zero (see Material::compression), so that
+/// its slope is continuous and Newton stays well posed. 1e-6 is far below any working strain
+/// (a chain at 1 % of its breaking load has strain ~1e-4); the band in tension, EA kSlackStrain,
+/// is 64 N for the A.3 chain, whose grounded end rests at 260 N: a wider band (1e-5, 640 N)
+/// reached into that chain's working range and its dynamic run lost Newton convergence there.
+constexpr double kSlackStrain = 1.0e-6;
+
+/// Slope of the slack law that Newton's Jacobian sees where the law itself is flat, as a
+/// fraction of the law's slope at zero strain [-]. A slack stretch has T = 0 whatever its strain,
+/// so its strain has no restoring force: the box scheme's odd-even mode of the strain (nodal
+/// strains alternating about their mean, which the coordinate rows of eq. 42 do not see) is then
+/// singular, and a wholly slack line cannot be solved. The Jacobian keeps this small slope there;
+/// the residual, hence the converged state and its tensions, keeps the exact law (T = 0).
+constexpr double kSlackJacobianFraction = 1.0e-3;
+
+/// The rounded ramp max(T, 0) of a line without compression: T when T >= b / 2, 0 when
+/// T <= -b / 2, (T + b / 2)^2 / (2 b) between (value and slope continuous), band b > 0 [N].
+/// Never negative; at most b / 8 above max(T, 0). `Tv` is the value of T (T itself may be an
+/// automatic-differentiation scalar, whose derivative is kept at least kSlackJacobianFraction
+/// times that of T: the slope Newton sees, see above).
+template <class S>
+S slackRamp(const S& T, double Tv, double b) {
+  if (Tv >= 0.5 * b) return T;
+  const double u = Tv + 0.5 * b;
+  if (u <= 0.0) return kSlackJacobianFraction * (T - Tv);  // value 0
+  if (u <= kSlackJacobianFraction * b) return u * u / (2.0 * b) + kSlackJacobianFraction * (T - Tv);
+  const S uS = T + 0.5 * b;
+  return uS * uS / (2.0 * b);
+}
+inline double slackRamp(double T, double Tv, double b) {
+  (void)Tv;
+  if (T >= 0.5 * b) return T;
+  if (T <= -0.5 * b) return 0.0;
+  const double u = T + 0.5 * b;
+  return u * u / (2.0 * b);
+}
+
 /// Axial constitutive law T(eps): linear (EA) or a piecewise-linear tension-strain table.
+/// Ropes and chains (the default) carry no compression: the law is slackRamp of the linear or
+/// table law, rounded over kSlackStrain; `compression: true` keeps the law as given below zero
+/// strain (rods, pipes, and the WHOI Cable law of the validation cases).
 struct Material {
   std::string name;
   double EA = 0.0;                        ///< axial stiffness [N]; used when the table is empty
@@ -32,12 +73,24 @@ struct Material {
   double cdt = 0.0;                       ///< tangential drag coefficient [-]
   double max_strain = 0.2;                ///< strain beyond which the law is not trusted [-]
   double mbl = 0.0;                       ///< minimum breaking load [N]; 0 = not given
+  bool compression = false;               ///< the law holds below zero strain too (else slackRamp)
+  /// Coulomb friction coefficients on the seabed, along the line and across it [-], times the
+  /// seabed reaction (docs/method.md, "Seabed friction"); 0 = frictionless (the default).
+  double mu_axial = 0.0;
+  double mu_lateral = 0.0;
 
-  /// Effective tension T(eps) [N] and its slope dT/deps [N].
+  /// Effective tension T(eps) [N] and its slope dT/deps [N] as Newton's Jacobian takes it: the
+  /// true slope, but at least kSlackJacobianFraction of the law's where a slack law is flat.
   double tension(double eps) const;
   double tensionSlope(double eps) const;
-  /// Inverse law: strain at tension T [-].
+  /// Inverse law: strain at tension T [-]. Without compression, T <= 0 gives the strain where
+  /// the rounded law reaches zero.
   double strainAt(double T) const;
+  /// The law as given (linear or table), without the slack ramp, and its slope [N].
+  double rawTension(double eps) const;
+  double rawTensionSlope(double eps) const;
+  /// Width in tension of the slack ramp, kSlackStrain times the law's slope at zero strain [N].
+  double slackBand() const;
 };
 
 /// A point body on the line: float, clump weight or instrument.
@@ -47,8 +100,19 @@ struct Body {
   double added_mass = 0.0;   ///< [kg]
   double wet_weight = 0.0;   ///< weight in water [N]; negative is buoyant
   double diameter = 0.0;     ///< diameter of the sphere with the same projected area [m]
-  double cdn = 0.0;          ///< drag coefficient normal to the line [-]
-  double cdt = 0.0;          ///< drag coefficient along the line [-]
+  /// Drag law. Sphere (YAML `cd`): 1/2 rho Cd A |r| r on the water velocity r relative to the
+  /// body, A = pi d^2 / 4, whatever the line's direction. LineAligned (YAML `cdn` and `cdt`, for
+  /// elongated bodies): the relative velocity split along the line's tangent (cdt) and across it
+  /// (cdn), each component with its own coefficient (the convention of WHOI Cable).
+  enum class Drag { Sphere, LineAligned };
+  Drag drag = Drag::LineAligned;
+  double cd = 0.0;           ///< Sphere: drag coefficient [-]
+  double cdn = 0.0;          ///< LineAligned: drag coefficient normal to the line [-]
+  double cdt = 0.0;          ///< LineAligned: drag coefficient along the line [-]
+
+  /// The coefficient of a point where no line tangent is defined (a junction of the lines of a
+  /// system): cd for a sphere, cdn for a line-aligned body [-].
+  double isotropicCd() const { return drag == Drag::Sphere ? cd : cdn; }
 };
 
 /// A body placed on a segment at a distance from the segment's lower end.

@@ -133,8 +133,9 @@ namespace detail {
 template <class Solver>
 class SeriesRecorder {
  public:
-  SeriesRecorder(const Solver& solver, const DynamicOptions& opt, double dout, DynamicSeries& out)
-      : solver_(solver), out_(out) {
+  SeriesRecorder(const Solver& solver, const Problem& problem, double dout, DynamicSeries& out)
+      : solver_(solver), problem_(problem), out_(out) {
+    const DynamicOptions& opt = problem.dynamics;
     const std::vector<double> s = solver.nodeArclengths();
     for (double want : opt.record_s) {
       std::size_t best = 0;
@@ -161,6 +162,7 @@ class SeriesRecorder {
     out_.top_x.push_back(r.nodes.back().x);
     out_.top_y.push_back(r.nodes.back().y);
     out_.top_z.push_back(r.nodes.back().z);
+    out_.peak.add(problem_.materials, problem_.segments, r.nodes, t);
     for (std::size_t i = 0; i < rec_.size(); ++i) {
       out_.node_tension[i].push_back(r.nodes[rec_[i]].tension);
       out_.node_x[i].push_back(r.nodes[rec_[i]].x);
@@ -175,6 +177,7 @@ class SeriesRecorder {
 
  private:
   const Solver& solver_;
+  const Problem& problem_;
   DynamicSeries& out_;
   std::vector<std::size_t> rec_;  ///< the recorded nodes
   long snap_every_ = 0;           ///< a snapshot every this many samples (0: none)
@@ -255,7 +258,7 @@ DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(do
   out.initial_static = solver.initialStatic();
   const double dout = opt.output_interval > 0.0 ? opt.output_interval : opt.dt;
   const long samples = static_cast<long>(std::floor(opt.duration / dout + 1e-9));
-  detail::SeriesRecorder<Solver> recorder(solver, opt, dout, out);
+  detail::SeriesRecorder<Solver> recorder(solver, problem, dout, out);
   recorder.record(0.0, 0);
   out.completed = true;
   detail::RowFollower<Solver> follower(solver, opt.top_motion);

@@ -10,6 +10,7 @@
 
 #include "mooring_dynamics/core/model/model.hpp"
 #include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/core/model/utilization.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -88,6 +89,8 @@ struct DynamicSeries {
   std::vector<StaticResult> snapshots;          ///< full line at snapshot times
   std::vector<double> snapshot_t;               ///< [s]
   StaticResult initial_static;
+  /// Largest tension along the line over the output samples, and its utilization (Material::mbl).
+  TensionPeak peak;
   bool completed = false;
   std::string message;                          ///< failure message when not completed
   long steps = 0, cuts = 0, newton_iterations = 0;
