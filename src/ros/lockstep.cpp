@@ -120,17 +120,15 @@ LockstepDriver::LockstepDriver(const core::Problem& problem, double dt, const Lo
   if (problem.top.type == core::TopBoundary::Type::Body)
     throw std::invalid_argument("top.body: the top of this line floats free (a subsurface buoy), so no motion "
                                 "source can drive it; use ~mode static or cable_sim dynamic");
-  if (problem.lower_end == core::Problem::LowerEnd::Free)
-    throw std::invalid_argument("free_end: towed lines are not run in lockstep yet (the steady-tow start needs the "
-                                "ship's velocity); use cable_sim dynamic with a ship_track");
+  if (problem.lower_end == core::Problem::LowerEnd::Free && problem.top.type != core::TopBoundary::Type::Position)
+    throw std::invalid_argument("free_end with a floating top (a drifter): the samples cannot drive it; use "
+                                "cable_sim dynamic");
   if (!factory_) factory_ = makeSolverFor(problem.formulation);
   problem_.dynamics.dt = dt;
   problem_.dynamics.output_interval = 0.0;
   // The samples drive the top: the file's top motion is not used (a position table would also
   // have to start at every re-initialisation's top).
-  core::TopMotion hold;
-  hold.prescribe_position = true;  // follow the vessel track: velocity with position feedback (no drift)
-  problem_.dynamics.top_motion = hold;
+  setStartMotion(problem_);
   if (problem_.dynamics.duration <= 0.0) problem_.dynamics.duration = dt;  // unused in lockstep
 
   solver_ = factory_(problem_);  // throws when the statics fail
@@ -169,6 +167,21 @@ std::string LockstepDriver::planarError(double y) const {
          "problem to follow motion out of that plane";
 }
 
+void LockstepDriver::setStartMotion(core::Problem& p) {
+  core::TopMotion m;
+  m.prescribe_position = true;  // follow the vessel track: velocity with position feedback (no drift)
+  if (p.lower_end == core::Problem::LowerEnd::Free && (p.top.tow_vx != 0.0 || p.top.tow_vy != 0.0)) {
+    // A tow starts from its steady state at top.tow_velocity (paper section 7.1), which the solver
+    // takes from the top motion's velocity at t = 0: rows one second either side of the top, on
+    // that velocity (as cable_sim dynamic's GNSS table starts). The samples move the top from the
+    // first step on (setTopSegment), so the rows after t = 0 are never followed.
+    m.type = core::TopMotion::Type::PositionTable;
+    for (double t : {-1.0, 0.0, 1.0})
+      m.table.emplace_back(t, p.top.x + t * p.top.tow_vx, p.top.y + t * p.top.tow_vy, p.top.z);
+  }
+  p.dynamics.top_motion = m;
+}
+
 std::unique_ptr<LockstepSolver> LockstepDriver::build(double x, double y, double z, bool at_problem_top,
                                                       std::string& error) const {
   core::Problem p = problem_;
@@ -177,6 +190,7 @@ std::unique_ptr<LockstepSolver> LockstepDriver::build(double x, double y, double
     p.top.x = x;
     p.top.y = threeD() ? y : 0.0;
     p.top.z = z;
+    setStartMotion(p);
   }
   try {
     return factory_(p);

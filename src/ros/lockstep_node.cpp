@@ -132,7 +132,8 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
     input = motion_sub_.getTopic();
   } else if (motion_source_ == "gnss") {
     // The fixes drive the top (docs/problem_format.md, dynamics.gnss): the track starts at the
-    // static top, whose position the first accepted fix puts it at (datum first_fix).
+    // static top, whose position the first accepted fix puts it at (datum first_fix); a tow's
+    // smoother starts on top.tow_velocity, as cable_sim dynamic's does.
     if (!driver_->threeD())
       throw std::runtime_error("parameter " + pnh_.resolveName("motion_source") +
                                " = \"gnss\": a ship track moves the top in the horizontal plane; the problem needs "
@@ -142,7 +143,7 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
     core::RigidPose start;
     start.position = Eigen::Vector3d(driver_->staticTopX(), driver_->staticTopY(), driver_->staticTopZ());
     gnss_ = std::make_unique<GnssInput>(
-        pnh_, go, start, Eigen::Vector2d::Zero(),
+        pnh_, go, start, Eigen::Vector2d(problem_.top.tow_vx, problem_.top.tow_vy),
         [this](const ros::Time& stamp, const core::RigidPose& p) {
           onMotion(stamp, frame_id_, p.position.x(), p.position.y(), p.position.z(), "fix");
         },

@@ -122,7 +122,7 @@ TEST(Material, StrainAtInvertsTheTable) {
 }
 
 TEST(Material, RopesAndChainsCarryNoCompression) {
-  // Default law: slackRamp of EA eps over the band b = EA kSlackStrain: exactly EA eps from
+  // compression: false: slackRamp of EA eps over the band b = EA kSlackStrain: exactly EA eps from
   // eps = kSlackStrain / 2 up, exactly 0 from -kSlackStrain / 2 down, never negative, value and
   // slope continuous at both joins.
   for (bool table : {false, true}) {
@@ -132,6 +132,8 @@ TEST(Material, RopesAndChainsCarryNoCompression) {
     } else {
       m.EA = 2.5e6;
     }
+    EXPECT_TRUE(m.compression) << "the default: WHOI Cable's law through zero";
+    m.compression = false;
     const double k0 = table ? 1e5 : 2.5e6, b = k0 * kSlackStrain;
     EXPECT_EQ(m.slackBand(), b);
     EXPECT_EQ(m.tension(0.004), m.rawTension(0.004));  // taut: the law as given, bit for bit
@@ -145,7 +147,9 @@ TEST(Material, RopesAndChainsCarryNoCompression) {
       const double h = 1e-9;
       const double fd = (m.tension(e + h) - m.tension(e - h)) / (2.0 * h);
       EXPECT_NEAR(m.tensionSlope(e), std::max(fd, kSlackJacobianFraction * k0), 1e-3 * k0) << e;
-      if (m.tension(e) > 0.0) EXPECT_NEAR(m.strainAt(m.tension(e)), e, 1e-12) << e;
+      if (m.tension(e) > 0.0) {
+        EXPECT_NEAR(m.strainAt(m.tension(e)), e, 1e-12) << e;
+      }
     }
     EXPECT_NEAR(m.strainAt(0.0), -0.5 * kSlackStrain, 1e-15);  // where the law reaches zero
     m.compression = true;

@@ -285,14 +285,14 @@ TEST(ProblemIo, NonPositiveValues) {
 }
 
 TEST(ProblemIo, MaterialPhysicsKeys) {
-  // Defaults: no compression, a frictionless seabed.
+  // Defaults: the law through zero (WHOI Cable's), a frictionless seabed.
   const Problem d = loadProblemFromString(kGood);
-  EXPECT_FALSE(d.materials[0].compression);
+  EXPECT_TRUE(d.materials[0].compression);
   EXPECT_EQ(d.materials[0].mu_axial, 0.0);
   EXPECT_EQ(d.materials[0].mu_lateral, 0.0);
   const Problem p = loadProblemFromString(
-      mutate("max_strain: 0.1}", "max_strain: 0.1, compression: true, mu_axial: 0.7, mu_lateral: 1.0}"));
-  EXPECT_TRUE(p.materials[0].compression);
+      mutate("max_strain: 0.1}", "max_strain: 0.1, compression: false, mu_axial: 0.7, mu_lateral: 1.0}"));
+  EXPECT_FALSE(p.materials[0].compression);
   EXPECT_EQ(p.materials[0].mu_axial, 0.7);
   EXPECT_EQ(p.materials[0].mu_lateral, 1.0);
   EXPECT_ERROR_HAS(mutate("max_strain: 0.1}", "max_strain: 0.1, mu_axial: -0.2}"), "materials.chain.mu_axial = -0.2",

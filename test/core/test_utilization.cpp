@@ -78,6 +78,7 @@ TEST(Utilization, PeakOverStatesKeepsTheTimeOfEach) {
 TEST(Utilization, SlackLengthCountsIntervalsWithBothNodesSlack) {
   Line l;
   l.materials[0].EA = 1e7;  // slack below EA kSlackStrain / 2 = 5 N
+  l.materials[0].compression = false;
   l.materials[1].EA = 1e7;
   l.materials[1].compression = true;  // slack at T <= 0
   const std::vector<NodeState> nodes{node(0.0, 100.0, 0), node(2.0, 4.0, 0),  node(5.0, 0.0, 0),

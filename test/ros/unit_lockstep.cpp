@@ -398,8 +398,11 @@ TEST(LockstepMonitor, UtilizationAboveTheLimitWarns) {
   m.onResult(r, 0.1, 0.0, &st, 0.0);
   s = m.summarise(0.2);
   EXPECT_EQ(s.message.find("utilization"), std::string::npos) << s.message;
-  for (const auto& kv : s.values)
-    if (kv.first == "utilization (max, total)") EXPECT_EQ(kv.second, "0.7");
+  for (const auto& kv : s.values) {
+    if (kv.first == "utilization (max, total)") {
+      EXPECT_EQ(kv.second, "0.7");
+    }
+  }
 }
 
 TEST(Markers, BodiesOfSTether) {

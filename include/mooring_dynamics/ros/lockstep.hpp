@@ -180,6 +180,9 @@ class LockstepDriver {
   /// `r` with `reason` unless its start failed (then it keeps StartFailed).
   static Result withReason(Result r, Reason reason);
   std::unique_ptr<LockstepSolver> build(double x, double y, double z, bool at_problem_top, std::string& error) const;
+  /// The top motion the solver starts from: held, or for a tow (free_end, top.tow_velocity) the
+  /// steady tow at that velocity through the top.
+  static void setStartMotion(core::Problem& p);
   /// Empty when (x, y, z) is a usable top position for the model, else why not.
   std::string positionError(double x, double y, double z) const;
   /// "(x, z)" in 2-D, "(x, y, z)" in 3-D, for messages.

@@ -56,9 +56,10 @@ inline double slackRamp(double T, double Tv, double b) {
 }
 
 /// Axial constitutive law T(eps): linear (EA) or a piecewise-linear tension-strain table.
-/// Ropes and chains (the default) carry no compression: the law is slackRamp of the linear or
-/// table law, rounded over kSlackStrain; `compression: true` keeps the law as given below zero
-/// strain (rods, pipes, and the WHOI Cable law of the validation cases).
+/// By default (`compression: true`) the law holds below zero strain too, as WHOI Cable's (the
+/// paper's eq. 9); `compression: false` (ropes and chains that must never push) makes it
+/// slackRamp of the linear or table law, rounded over kSlackStrain. Not the default because the
+/// box scheme cannot yet run every wholly slack stretch through (docs/method.md, "Slack lines").
 struct Material {
   std::string name;
   double EA = 0.0;                        ///< axial stiffness [N]; used when the table is empty
@@ -73,7 +74,7 @@ struct Material {
   double cdt = 0.0;                       ///< tangential drag coefficient [-]
   double max_strain = 0.2;                ///< strain beyond which the law is not trusted [-]
   double mbl = 0.0;                       ///< minimum breaking load [N]; 0 = not given
-  bool compression = false;               ///< the law holds below zero strain too (else slackRamp)
+  bool compression = true;                ///< the law holds below zero strain too (else slackRamp)
   /// Coulomb friction coefficients on the seabed, along the line and across it [-], times the
   /// seabed reaction (docs/method.md, "Seabed friction"); 0 = frictionless (the default).
   double mu_axial = 0.0;
