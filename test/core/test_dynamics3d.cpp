@@ -247,8 +247,8 @@ TEST(Dynamics3D, LineSweptThroughTheVerticalRunsWithoutBlowUp) {
   // the singular orientation of an angle-based 3-D frame), then circles the anchor's vertical
   // once (the line's azimuth turns through 360 deg) and returns.
   Problem p = chainMooring();
-  // The law through zero (compression: true): with the default law of a chain, which carries no
-  // compression, this run stops at t = 9.9 s where the Newton iteration of the slack line near
+  // The law through zero (compression: true): with compression: false (a chain that carries no
+  // compression), this run stops at t = 9.9 s where the Newton iteration of the slack line near
   // the anchor does not converge (docs/method.md, "Slack lines", limits).
   p.materials[0].compression = true;
   p.environment.current.clear();

@@ -73,7 +73,7 @@ Problem validProblem() {
 TEST(Material, LinearEA) {
   Material m;
   m.EA = 2.5e6;
-  m.compression = true;  // the law as given below zero strain (the default has none: SlackRamp)
+  m.compression = true;  // the law as given below zero strain (the default; compression: false has none: SlackRamp)
   for (double eps : {-0.01, 0.0, 0.004, 0.3}) {
     EXPECT_NEAR(m.tension(eps), 2.5e6 * eps, kRel * 2.5e6);
     EXPECT_EQ(m.tensionSlope(eps), 2.5e6);
