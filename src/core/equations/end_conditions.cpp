@@ -574,6 +574,78 @@ class TowPoint3D : public DynamicForms3D<TowPoint3D> {
   const Material& m_;
 };
 
+/// The rows of a free end's kinematics, dx/dt = V at its node, in generalized-alpha form (the
+/// weighted rate of x against the alpha_k-weighted global velocity, as the drifting buoy's rows
+/// 6-8): in a part of a line with no end held in place, all that fixes where the part is.
+template <class S>
+void freeKinematics(const DynamicEnd3D& c, const S* y, S* r) {
+  using namespace eq3d;
+  const auto [am, ak, c1, c0] = c.w;
+  S yp[N], V1[3], V0[3];
+  for (int k = 0; k < N; ++k) yp[k] = constantOf<S>(c.yp[k]);
+  globalVelocity(y, V1);
+  globalVelocity(yp, V0);
+  for (int i = 0; i < 3; ++i) {
+    const S ydw = (1.0 - am) * (c1 * (y[X + i] - c.yp[X + i]) - c0 * c.ydp[X + i]) + am * c.ydp[X + i];
+    r[i] = ydw - ((1.0 - ak) * V1[i] + ak * V0[i]);
+  }
+}
+
+/// A released (let-go or parted) upper end: moment free and no force, F = 0 at the new level;
+/// with `kinematics` (a part whose lower end holds no position either: a towed line's) also
+/// dx/dt = V, 9 rows instead of 6.
+class ReleasedTop3D : public DynamicForms3D<ReleasedTop3D> {
+ public:
+  ReleasedTop3D(const Material& m, bool kinematics) : m_(m), kinematics_(kinematics) {}
+  const char* name() const override { return "released top"; }
+  int staticRows() const override { return 6; }
+  void staticResidual(const StaticEnd3D&, const AD* y, AD* r) const override {
+    topMomentFree(y, r);
+    eq3d::internalForce(m_, y, r + 3);
+  }
+  int dynamicRows() const override { return kinematics_ ? 9 : 6; }
+  template <class S>
+  void rows(const DynamicEnd3D& c, const S* y, S* r) const {
+    topMomentFree(y, r);
+    eq3d::internalForce(m_, y, r + 3);
+    if (kinematics_) freeKinematics(c, y, r + 6);
+  }
+
+ private:
+  const Material& m_;
+  bool kinematics_;
+};
+
+/// A released lower end (an anchor let go, the upper part of a parted line): no force, F = 0,
+/// bending-moment free with the lower end's gauge, and, with `kinematics` (the part's top holds
+/// no position: a top driven by velocity, a body), dx/dt = V: 10 rows as the anchor's, else 7 as
+/// a free end's under a tow point.
+class ReleasedLowerEnd3D : public DynamicForms3D<ReleasedLowerEnd3D> {
+ public:
+  ReleasedLowerEnd3D(const Material& m, bool kinematics) : m_(m), kinematics_(kinematics) {}
+  const char* name() const override { return "released lower end"; }
+  int staticRows() const override { return 10; }
+  void staticResidual(const StaticEnd3D& c, const AD* y, AD* r) const override {
+    using namespace eq3d;
+    r[0] = y[U1];
+    r[1] = y[U2];
+    r[2] = y[U3];
+    internalForce(m_, y, r + 3);
+    lowerEndGauge(c.q_ref, y, r + 6);
+  }
+  int dynamicRows() const override { return kinematics_ ? 10 : 7; }
+  template <class S>
+  void rows(const DynamicEnd3D& c, const S* y, S* r) const {
+    eq3d::internalForce(m_, y, r);
+    lowerEndGauge(c.yp + eq3d::Q0, y, r + 3);
+    if (kinematics_) freeKinematics(c, y, r + 7);
+  }
+
+ private:
+  const Material& m_;
+  bool kinematics_;
+};
+
 }  // namespace
 
 // --- Factories -------------------------------------------------------------------------------------
@@ -620,6 +692,16 @@ std::unique_ptr<EndCondition3D> makeUpperEnd3D(const Problem& problem, const Mat
       return std::make_unique<SubsurfaceBodyTop3D>(problem, top_material);
   }
   throw std::logic_error("makeUpperEnd3D: unknown top type");
+}
+
+std::unique_ptr<EndCondition3D> makeReleasedUpperEnd3D(const Material& top_material, int rows) {
+  if (rows != 6 && rows != 9) throw std::logic_error("makeReleasedUpperEnd3D: rows must be 6 or 9");
+  return std::make_unique<ReleasedTop3D>(top_material, rows == 9);
+}
+
+std::unique_ptr<EndCondition3D> makeReleasedLowerEnd3D(const Material& end_material, int rows) {
+  if (rows != 10 && rows != 7) throw std::logic_error("makeReleasedLowerEnd3D: rows must be 10 or 7");
+  return std::make_unique<ReleasedLowerEnd3D>(end_material, rows == 10);
 }
 
 }  // namespace core

@@ -342,13 +342,57 @@ void readStepControl(const Map& m, DynamicOptions& d) {
   }
 }
 
+/// dynamics.events: a list of {type: release, end: top | anchor, t} and
+/// {type: break, t [, s] | tension: N | mbl}, each with `line` in a system file.
+void readEvents(const Item& it, DynamicOptions& d) {
+  d.events.clear();
+  const std::vector<Item> items = listItems(it);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const Map m(items[i], {"type", "end", "t", "tension", "s", "line"});
+    LineEvent e;
+    const Item ti = m.at("type");
+    const std::string type = readString(ti);
+    if (type == "release")
+      e.type = LineEvent::Type::Release;
+    else if (type == "break")
+      e.type = LineEvent::Type::Break;
+    else
+      ti.failQuoted("unknown event (known: release, break)");
+    if (e.type == LineEvent::Type::Release) {
+      const Item ei = m.at("end");
+      const std::string end = readString(ei);
+      if (end == "top")
+        e.end = LineEvent::End::Top;
+      else if (end == "anchor")
+        e.end = LineEvent::End::Anchor;
+      else
+        ei.failQuoted("must be top or anchor");
+    } else if (m.has("end")) {
+      m.at("end").fail("a break parts the line where its tension is largest (or at s); end goes with a release");
+    }
+    if (m.has("t")) e.t = m.number("t", 0.0, Range::NonNegative);
+    if (m.has("tension")) {
+      const Item xi = m.at("tension");
+      if (xi.node.IsScalar() && xi.node.Scalar() == "mbl")
+        e.at_mbl = true;
+      else
+        e.tension = checked(xi, readNumber(xi), Range::Positive);
+    }
+    if (m.has("s")) e.s = m.number("s", 0.0, Range::NonNegative);
+    if (m.has("line")) e.line = readString(m.at("line"));
+    const std::string err = e.validate(items[i].path);
+    if (!err.empty()) throw ProblemError(err + lineSuffix(items[i].mark));
+    d.events.push_back(e);
+  }
+}
+
 }  // namespace
 
 void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   const Map m(it, {"duration", "dt", "output_interval", "snapshot_interval", "record_s", "scheme", "lambda_inf",
                    "alpha_m", "alpha_k", "gamma", "max_cut_levels", "tolerance", "max_iterations", "relaxation",
                    "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "threads", "adaptive_mesh", "mesh_weight", "top_motion",
-                   "gnss"});
+                   "gnss", "events"});
   d.duration = m.number("duration", d.duration, Range::Positive);
   d.dt = m.number("dt", d.dt, Range::Positive);
   readOutputs(m, d, line_length);
@@ -359,6 +403,7 @@ void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
 
   if (presentAndNotNull(m, "top_motion")) readTopMotion(m.at("top_motion"), d.top_motion);
   if (m.has("gnss")) readGnss(m.at("gnss"), d.gnss);
+  if (presentAndNotNull(m, "events")) readEvents(m.at("events"), d);
 }
 
 }  // namespace problem_io_detail

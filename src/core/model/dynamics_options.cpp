@@ -46,6 +46,24 @@ std::string TopMotion::validate() const {
   return {};
 }
 
+std::string LineEvent::validate(const std::string& key) const {
+  const std::string k = key + ".";
+  const bool timed = t >= 0.0;
+  if (!(std::isfinite(t))) return bad(k + "t", t, "must be a finite time >= 0 [s]");
+  if (!(std::isfinite(tension) && tension >= 0.0)) return bad(k + "tension", tension, "must be > 0 [N] or mbl");
+  if (!std::isfinite(s)) return bad(k + "s", s, "must be a finite arclength >= 0 [m]");
+  if (type == Type::Release) {
+    if (!timed) return k + "t: required for a release (the time the end is let go [s])";
+    if (tension > 0.0 || at_mbl) return k + "tension: only a break has a tension; a release happens at t";
+    if (s >= 0.0) return k + "s: only a break has an arclength; a release lets go an end (end: top or anchor)";
+    return {};
+  }
+  if (timed == onTension())
+    return k + "t / tension: a break needs exactly one of t (a time [s]) and tension (a force [N] or mbl)";
+  if (s >= 0.0 && !timed) return k + "s: a break on tension parts at the node where the tension exceeds it; s goes with t";
+  return {};
+}
+
 std::string DynamicOptions::validate() const {
   const std::string k = "dynamics.";
   if (!(std::isfinite(duration) && duration >= 0.0)) return bad(k + "duration", duration, "must be >= 0");
@@ -81,6 +99,21 @@ std::string DynamicOptions::validate() const {
     return bad(k + "relaxation", relaxation, "must be in (0, 1]");
   if (threads < 1 || threads > 2) return k + "threads = " + std::to_string(threads) + ": must be 1 or 2";
   if (!(std::isfinite(mesh_weight) && mesh_weight >= 0.0)) return bad(k + "mesh_weight", mesh_weight, "must be >= 0");
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const std::string ek = k + "events[" + std::to_string(i) + "]";
+    if (!(e = events[i].validate(ek)).empty()) return e;
+    if (duration > 0.0 && events[i].t > duration)
+      return bad(ek + ".t", events[i].t, "after dynamics.duration = " + std::to_string(duration) + " s: it would never happen");
+    for (std::size_t j = 0; j < i; ++j) {
+      if (events[j].line != events[i].line) continue;
+      const std::string of = events[i].line.empty() ? "" : " of line " + events[i].line;
+      if (events[i].type == LineEvent::Type::Break && events[j].type == LineEvent::Type::Break)
+        return ek + ": a second break" + of + " (events[" + std::to_string(j) + "] is one); a line parts once";
+      if (events[i].type == LineEvent::Type::Release && events[j].type == LineEvent::Type::Release &&
+          events[i].end == events[j].end)
+        return ek + ": the same end" + of + " is released by events[" + std::to_string(j) + "] already";
+    }
+  }
   return top_motion.validate();
 }
 

@@ -563,6 +563,28 @@ std::string validateTop(const Problem& p) {
   return {};
 }
 
+/// dynamics.events of a single line (the events' own fields are checked by DynamicOptions).
+std::string validateEvents(const Problem& p) {
+  for (std::size_t i = 0; i < p.dynamics.events.size(); ++i) {
+    const LineEvent& ev = p.dynamics.events[i];
+    const std::string k = "dynamics.events[" + std::to_string(i) + "]";
+    if (p.formulation != Formulation::ThreeD)
+      return k + ": line events run in the 3-D solver; set formulation: 3d (a planar problem gives the same results there)";
+    if (!ev.line.empty()) return k + ".line = " + ev.line + ": only a system file names the line of an event";
+    if (ev.type == LineEvent::Type::Release && ev.end == LineEvent::End::Anchor && p.lower_end == Problem::LowerEnd::Free)
+      return k + ".end = anchor: the line's lower end is free already (lower_end: free)";
+    if (ev.s > p.totalLength() * (1.0 + 1e-12))
+      return k + ".s = " + std::to_string(ev.s) + ": beyond the top of the line (unstretched length " +
+             std::to_string(p.totalLength()) + " m)";
+    if (ev.at_mbl) {
+      bool any = false;
+      for (const Segment& g : p.segments) any = any || p.materials[g.material].mbl > 0.0;
+      if (!any) return k + ".tension = mbl: no material of the line has an mbl";
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string Problem::validate() const {
@@ -575,6 +597,7 @@ std::string Problem::validate() const {
   if (!(e = validateTop(*this)).empty()) return e;
   if (!(e = static_options.validate()).empty()) return e;
   if (!(e = dynamics.validate()).empty()) return e;
+  if (!(e = validateEvents(*this)).empty()) return e;
   return validateResources();
 }
 

@@ -219,6 +219,32 @@ std::string validateLineProblems(const SystemProblem& s) {
 
 }  // namespace
 
+/// dynamics.events of a system: each names a line of the file.
+static std::string validateSystemEvents(const SystemProblem& s) {
+  for (std::size_t i = 0; i < s.dynamics.events.size(); ++i) {
+    const LineEvent& ev = s.dynamics.events[i];
+    const std::string k = "dynamics.events[" + std::to_string(i) + "]";
+    if (ev.line.empty()) return k + ".line: required in a system file (the name of the line the event happens to)";
+    const SystemLine* line = nullptr;
+    for (const SystemLine& l : s.lines)
+      if (l.name == ev.line) line = &l;
+    if (!line) return k + ".line = " + ev.line + ": no line of that name in lines";
+    double length = 0.0;
+    bool any_mbl = false;
+    for (const Segment& g : line->segments) {
+      length += g.length;
+      any_mbl = any_mbl || s.materials[g.material].mbl > 0.0;
+    }
+    if (ev.s > length * (1.0 + 1e-12))
+      return k + ".s = " + std::to_string(ev.s) + ": beyond the top of line " + ev.line + " (unstretched length " +
+             std::to_string(length) + " m)";
+    if (ev.at_mbl && !any_mbl) return k + ".tension = mbl: no material of line " + ev.line + " has an mbl";
+    if (ev.type == LineEvent::Type::Release && ev.end == LineEvent::End::Anchor && line->from == SystemLine::kFreeEnd)
+      return k + ".end = anchor: line " + ev.line + "'s lower end is free already";
+  }
+  return {};
+}
+
 std::string SystemProblem::validate() const {
   if (points.empty()) return "points: at least one point is needed";
   if (lines.empty()) return "lines: at least one line is needed";
@@ -229,6 +255,7 @@ std::string SystemProblem::validate() const {
   if (!(e = validateConnected(*this)).empty()) return e;
   if (!(e = validateSupports(*this)).empty()) return e;
   if (!(e = validateSizes(*this)).empty()) return e;
+  if (!(e = validateSystemEvents(*this)).empty()) return e;
   return validateLineProblems(*this);
 }
 

@@ -58,6 +58,16 @@ struct DynamicSolver3D::Impl {
   Eigen::VectorXd Yd_prev;     ///< rate before the last accepted step (second-order predictor)
   double last_dt = 0.0;        ///< size of the last accepted step [s]
 
+  // Line events (issue 21; docs/method.md "Line events").
+  std::vector<LineEvent> events;        ///< problem.dynamics.events
+  std::vector<char> event_done;         ///< per event: it happened
+  std::vector<LineEventRecord> event_log;
+  std::unique_ptr<EndCondition3D> lower_kept, upper_kept;  ///< an end before its release (null: held)
+  /// The interval the line parted in (-1: in one piece) and its rows: a released upper end at
+  /// its lower node, a released lower end at its upper node (end_conditions.hpp).
+  int parted = -1;
+  std::unique_ptr<EndCondition3D> part_top, part_lower;
+
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 
@@ -90,6 +100,7 @@ struct DynamicSolver3D::Impl {
     const int n = nodes();
     out.setZero(kInertiaRows * (n - 1));
     for (int j = 0; j + 1 < n; ++j) {
+      if (j == parted) continue;  // a parted interval's rows are not weighted in time
       const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
       const double* ya = y.data() + N * j;
       double r[N];
@@ -186,6 +197,7 @@ class DynamicStepSystem3D : public NewtonSystem {
       if (J) J->setZeroRows(first, last - first);
       if (j0 == 0) endRows<S16>(*im_.lower, 0, 0, Yv, R, J);
       intervalRows<S32>(Yv, R, J, j0, j1);
+      if (im_.parted >= j0 && im_.parted < j1) partedRows<S16>(Yv, R, J);
       if (j1 == n - 1) endRows<S16>(*im_.upper, n - 1, end_rows_ + N * (n - 1), Yv, R, J);
     });
   }
@@ -218,13 +230,23 @@ class DynamicStepSystem3D : public NewtonSystem {
     scatter(r, end.dynamicRows(), row0, col0, N, R, J);
   }
 
-  /// The rows of intervals [j0, j1).
+  /// The rows of the interval the line parted in: its two new ends, the upper end of the lower
+  /// part at node j and the lower end of the upper part at node j + 1 (end_conditions.hpp).
+  template <class S16>
+  void partedRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J) const {
+    const int j = im_.parted, row = end_rows_ + N * j;
+    endRows<S16>(*im_.part_top, j, row, Yv, R, J);
+    endRows<S16>(*im_.part_lower, j + 1, row + im_.part_top->dynamicRows(), Yv, R, J);
+  }
+
+  /// The rows of intervals [j0, j1) (but a parted one's: partedRows).
   template <class S32>
   void intervalRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1) const {
     const auto [am, ak, c1, c0] = weights();
     const Environment& env = im_.problem.environment;
     const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
     for (int j = j0; j < j1; ++j) {
+      if (j == im_.parted) continue;
       const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
       const int row = end_rows_ + N * j;
       S32 y[2 * N], ydw[2 * N], yp[2 * N];
@@ -391,6 +413,8 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
     im.newton_matrix.setParallel(im.fork.get());
   }
   setTopMotion(im, problem);
+  im.events = problem.dynamics.events;
+  im.event_done.assign(im.events.size(), 0);
   startState(im, st.Y, towed || drifter, drifter, V0);
   im.waterField(im.Y, 0.0, im.water);
   im.spatialRows(im.Y, im.water, im.S);
@@ -405,7 +429,8 @@ void DynamicSolver3D::setLowerEndInput(std::function<TopState(double)> source) {
   Impl& im = *impl_;
   if (im.problem.lower_end == Problem::LowerEnd::Free)
     throw std::invalid_argument("setLowerEndInput: the line's lower end is free; it has no anchor to move");
-  im.lower = source ? makeMovingAnchor3D(im.problem, std::move(source)) : makeLowerEnd3D(im.problem, im.mat(0));
+  std::unique_ptr<EndCondition3D>& held = im.lower_kept ? im.lower_kept : im.lower;  // a released anchor stays so
+  held = source ? makeMovingAnchor3D(im.problem, std::move(source)) : makeLowerEnd3D(im.problem, im.mat(0));
 }
 double DynamicSolver3D::time() const { return impl_->t; }
 const StaticResult& DynamicSolver3D::initialStatic() const { return impl_->statics; }
@@ -424,6 +449,144 @@ StaticResult DynamicSolver3D::snapshot() const {
 }
 
 namespace {
+
+// --- Line events (issue 21; docs/method.md "Line events") ------------------------------------------
+
+std::string fmtNum(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+double nodeTension(const DynamicSolver3D::Impl& im, int j) { return im.mat(j).tension(im.Y[N * j + EPS]); }
+
+/// The node of largest tension now.
+int largestTensionNode(const DynamicSolver3D::Impl& im) {
+  int best = 0;
+  for (int j = 1; j < im.nodes(); ++j)
+    if (nodeTension(im, j) > nodeTension(im, best)) best = j;
+  return best;
+}
+
+void logEvent(DynamicSolver3D::Impl& im, const std::string& what, int node, const std::string& cause) {
+  LineEventRecord r;
+  r.t = im.t;
+  r.what = what;
+  r.node = node;
+  r.s = im.mesh.nodes[static_cast<std::size_t>(node)].s;
+  r.tension = nodeTension(im, largestTensionNode(im));
+  r.cause = cause;
+  im.event_log.push_back(r);
+}
+
+/// The rows change: the kept factorization and the predictor's rate history no longer apply.
+void rowsChanged(DynamicSolver3D::Impl& im) {
+  im.newton_matrix.setZero();
+  im.factored_dt = 0.0;
+}
+
+void releaseEnd(DynamicSolver3D::Impl& im, LineEvent::End end, const std::string& cause) {
+  const int n = im.nodes();
+  if (end == LineEvent::End::Top) {
+    if (im.upper_kept) throw std::logic_error("release: the line's top is let go already");
+    logEvent(im, "released top", n - 1, cause);
+    const int rows = im.upper->dynamicRows();
+    im.upper_kept = std::move(im.upper);
+    im.upper = makeReleasedUpperEnd3D(im.mat(n - 1), rows);
+  } else {
+    if (im.lower_kept || im.problem.lower_end == Problem::LowerEnd::Free)
+      throw std::logic_error("release: the line's lower end is free already");
+    logEvent(im, "released anchor", 0, cause);
+    const int rows = im.lower->dynamicRows();
+    im.lower_kept = std::move(im.lower);
+    im.lower = makeReleasedLowerEnd3D(im.mat(0), rows);
+  }
+  rowsChanged(im);
+}
+
+/// The line parts at node k: in the interval beside it (not a junction) toward the higher
+/// tension; at an end node, that end is let go.
+void partAt(DynamicSolver3D::Impl& im, int k, const std::string& cause) {
+  const int n = im.nodes();
+  if (im.parted >= 0) throw std::logic_error("break: the line has parted already");
+  if (k < 0 || k >= n) throw std::out_of_range("break: node " + std::to_string(k) + " is not on the line");
+  if (k == n - 1 && !im.upper_kept) return releaseEnd(im, LineEvent::End::Top, cause);
+  if (k == 0 && !im.lower_kept && im.problem.lower_end != Problem::LowerEnd::Free)
+    return releaseEnd(im, LineEvent::End::Anchor, cause);
+  auto usable = [&im, n](int j) { return j >= 0 && j + 1 < n && im.mesh.intervals[static_cast<std::size_t>(j)].h > 0.0; };
+  int j = -1;
+  if (usable(k - 1) && usable(k))
+    j = nodeTension(im, k - 1) > nodeTension(im, k + 1) ? k - 1 : k;
+  else
+    j = usable(k) ? k : k - 1;
+  if (!usable(j)) throw std::logic_error("break: no interval beside node " + std::to_string(k) + " can part");
+  logEvent(im, "parted", j, cause);
+  im.parted = j;
+  im.part_top = makeReleasedUpperEnd3D(im.mat(j), N - im.lower->dynamicRows());
+  im.part_lower = makeReleasedLowerEnd3D(im.mat(j + 1), N - im.upper->dynamicRows());
+  rowsChanged(im);
+}
+
+void applyEvent(DynamicSolver3D::Impl& im, std::size_t i, const std::string& cause) {
+  const LineEvent& e = im.events[i];
+  im.event_done[i] = 1;
+  if (e.type == LineEvent::Type::Release) return releaseEnd(im, e.end, cause);
+  int k = largestTensionNode(im);
+  if (e.s >= 0.0) {
+    k = 0;
+    for (int j = 1; j < im.nodes(); ++j)
+      if (std::abs(im.mesh.nodes[static_cast<std::size_t>(j)].s - e.s) <
+          std::abs(im.mesh.nodes[static_cast<std::size_t>(k)].s - e.s))
+        k = j;
+  }
+  partAt(im, k, cause);
+}
+
+/// After an accepted step: a break on tension whose limit a node's tension exceeds happens now,
+/// at the node where the tension is the largest fraction of its limit.
+void breakOnTension(DynamicSolver3D::Impl& im) {
+  for (std::size_t i = 0; i < im.events.size(); ++i) {
+    const LineEvent& e = im.events[i];
+    if (im.event_done[i] || !e.onTension()) continue;
+    int worst = -1;
+    double worst_ratio = 1.0, limit = 0.0;
+    for (int j = 0; j < im.nodes(); ++j) {
+      const double lim = e.at_mbl ? im.mat(j).mbl : e.tension;
+      if (!(lim > 0.0)) continue;
+      const double ratio = nodeTension(im, j) / lim;
+      if (ratio > worst_ratio) {
+        worst_ratio = ratio;
+        worst = j;
+        limit = lim;
+      }
+    }
+    if (worst < 0) continue;
+    im.event_done[i] = 1;
+    partAt(im, worst, "tension " + fmtNum(nodeTension(im, worst)) + " N > " + (e.at_mbl ? "mbl " : "") +
+                          fmtNum(limit) + " N at node " + std::to_string(worst));
+  }
+}
+
+/// The first timed event that has not happened (-1: none).
+int nextTimedEvent(const DynamicSolver3D::Impl& im) {
+  int next = -1;
+  for (std::size_t i = 0; i < im.events.size(); ++i) {
+    if (im.event_done[i] || !(im.events[i].t >= 0.0)) continue;
+    if (next < 0 || im.events[i].t < im.events[static_cast<std::size_t>(next)].t) next = static_cast<int>(i);
+  }
+  return next;
+}
+
+void addReport(StepReport& total, const StepReport& rep) {
+  total.ok = rep.ok;
+  total.steps += rep.steps;
+  total.cuts += rep.cuts;
+  total.newton_iterations += rep.newton_iterations;
+  if (rep.smallest_dt > 0.0)
+    total.smallest_dt = total.smallest_dt > 0.0 ? std::min(total.smallest_dt, rep.smallest_dt) : rep.smallest_dt;
+  total.message = rep.message;
+}
 
 /// One attempted step of size dt from the accepted state; on success the state advances.
 bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
@@ -459,6 +622,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.water = sys.water();
   im.spatialRows(im.Y, im.water, im.S);
   im.acceptEndLevels(im.Y, im.water, im.t);
+  breakOnTension(im);
   ++rep.steps;
   ++im.totals.steps;
   rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
@@ -469,10 +633,33 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
 
 StepReport DynamicSolver3D::advanceTo(double t_end) {
   Impl& im = *impl_;
-  return advanceWithCuts(
-      im.t, im.opt.dt, im.opt.max_cut_levels, t_end, [&im](double dt, StepReport& rep) { return tryStep(im, dt, rep); },
-      [&im]() { ++im.totals.cuts; });
+  auto run = [&im](double t1) {
+    return advanceWithCuts(
+        im.t, im.opt.dt, im.opt.max_cut_levels, t1, [&im](double dt, StepReport& rep) { return tryStep(im, dt, rep); },
+        [&im]() { ++im.totals.cuts; });
+  };
+  // Timed events up to t_end: advance to each, then let it happen (a break on tension happens
+  // inside tryStep, after the step in which its limit is first exceeded).
+  const double eps = 1e-9 * im.opt.dt;
+  StepReport total;
+  for (int i = nextTimedEvent(im); i >= 0 && im.events[static_cast<std::size_t>(i)].t <= t_end + eps;
+       i = nextTimedEvent(im)) {
+    const double te = im.events[static_cast<std::size_t>(i)].t;
+    if (te > im.t + eps) {
+      addReport(total, run(te));
+      if (!total.ok) return total;
+    }
+    applyEvent(im, static_cast<std::size_t>(i), "at t = " + fmtNum(te) + " s");
+  }
+  addReport(total, run(t_end));
+  return total;
 }
+
+void DynamicSolver3D::releaseEnd(LineEvent::End end, const std::string& cause) {
+  core::releaseEnd(*impl_, end, cause);
+}
+void DynamicSolver3D::partAt(int node, const std::string& cause) { core::partAt(*impl_, node, cause); }
+const std::vector<LineEventRecord>& DynamicSolver3D::eventLog() const { return impl_->event_log; }
 
 double DynamicSolver3D::jacobianFiniteDifferenceError(double dt) const {
   const Impl& im = *impl_;
@@ -486,6 +673,11 @@ struct DynamicSolver3D::Saved {
   Eigen::VectorXd Y, Yd, Yd_prev, S;
   std::vector<Water> water;
   std::vector<double> lower_state, upper_state;  ///< of the ends (EndCondition3D::state)
+  // Line events: which had happened (a step re-run from here undoes the later ones).
+  std::vector<char> event_done;
+  std::size_t log_size = 0;
+  bool lower_released = false, upper_released = false;
+  int parted = -1;
   double last_dt = 0.0;
   Totals totals;
 };
@@ -501,6 +693,11 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->water = im.water;
   s->lower_state = im.lower->state();
   s->upper_state = im.upper->state();
+  s->event_done = im.event_done;
+  s->log_size = im.event_log.size();
+  s->lower_released = im.lower_kept != nullptr;
+  s->upper_released = im.upper_kept != nullptr;
+  s->parted = im.parted;
   s->last_dt = im.last_dt;
   s->totals = im.totals;
   return s;
@@ -514,6 +711,14 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.Yd_prev = s.Yd_prev;
   im.S = s.S;
   im.water = s.water;
+  if (s.lower_released != (im.lower_kept != nullptr) || s.upper_released != (im.upper_kept != nullptr) ||
+      s.parted != im.parted)
+    rowsChanged(im);
+  if (!s.lower_released && im.lower_kept) im.lower = std::move(im.lower_kept);
+  if (!s.upper_released && im.upper_kept) im.upper = std::move(im.upper_kept);
+  im.parted = s.parted;
+  im.event_done = s.event_done;
+  im.event_log.resize(s.log_size);
   im.lower->setState(s.lower_state);
   im.upper->setState(s.upper_state);
   im.last_dt = s.last_dt;

@@ -168,6 +168,7 @@ namespace {
 Problem planarProjection(const Problem& p, double psi) {
   Problem q = p;
   q.formulation = Formulation::TwoD;
+  q.dynamics.events.clear();  // a static first guess: the 3-D run's events are not its business
   const double c = std::cos(psi), s = std::sin(psi);
   const bool identity = psi == 0.0 && p.anchor_y == 0.0;
   if (!identity) {

@@ -70,10 +70,20 @@ struct SystemDynamics::Impl {
     };
   }
 
-  /// The dynamic problem of line i of `sys` with its ends at `xyz` (3 per point of `sys`).
-  Problem lineDynamicProblem(const SystemProblem& sys, std::size_t i, const std::vector<double>& xyz) const {
+  /// The dynamic problem of line i of `sys` with its ends at `xyz` (3 per point of `sys`), for a
+  /// solver whose time 0 is system time t0: the line's own events (dynamics.events naming it),
+  /// their times on its clock; those before t0 are gone.
+  Problem lineDynamicProblem(const SystemProblem& sys, std::size_t i, const std::vector<double>& xyz,
+                             double t0 = 0.0) const {
     Problem p = sys.lineProblem(i, xyz);
     p.dynamics = opt;
+    p.dynamics.events.clear();
+    for (LineEvent e : opt.events) {
+      if (e.line != sys.lines[i].name || (e.t >= 0.0 && e.t < t0)) continue;
+      e.line.clear();
+      if (e.t >= 0.0) e.t -= t0;
+      p.dynamics.events.push_back(e);
+    }
     p.dynamics.top_motion = TopMotion{};
     p.dynamics.top_motion.prescribe_position = true;  // the top follows its point
     if (p.dynamics.duration <= 0.0) p.dynamics.duration = opt.dt;
@@ -93,9 +103,16 @@ struct SystemDynamics::Impl {
   bool restartGroup(std::size_t g, double t1, const RigidPose& pose, Restart& out, std::string& why) const {
     SystemProblem placed = system;
     placed.placeVessel(pose);
+    for (std::size_t i : groups[g])
+      if (!lines[i]->eventLog().empty()) {
+        why = "line " + system.lines[i].name + " was " + lines[i]->eventLog().front().what +
+              " (line events cannot be undone by a restart from statics)";
+        return false;
+      }
     SystemProblem sub = placed;
     sub.points.clear();
     sub.lines.clear();
+    sub.dynamics.events.clear();
     std::vector<std::size_t> map(system.points.size(), SystemLine::kFreeEnd);
     auto use = [&](std::size_t p) {
       if (p == SystemLine::kFreeEnd) return p;
@@ -117,6 +134,8 @@ struct SystemDynamics::Impl {
       l.from = use(l.from);
       l.to = use(l.to);
       sub.lines.push_back(l);
+      for (const LineEvent& e : opt.events)
+        if (e.line == l.name) sub.dynamics.events.push_back(e);
     }
     try {
       const std::string bad = sub.validate();
@@ -134,7 +153,7 @@ struct SystemDynamics::Impl {
       out.group = g;
       out.lines.clear();
       for (std::size_t k = 0; k < sub.lines.size(); ++k)
-        out.lines.push_back(std::make_unique<DynamicSolver3D>(lineDynamicProblem(sub, k, xyz)));
+        out.lines.push_back(std::make_unique<DynamicSolver3D>(lineDynamicProblem(sub, k, xyz, t1)));
       out.points.clear();
       for (std::size_t p : group_pts[g]) {
         const auto& pt = st.points[map[p]];
@@ -296,6 +315,23 @@ StaticResult SystemDynamics::line(std::size_t i) const { return impl_->lines.at(
 
 std::array<double, 3> SystemDynamics::pointVelocity(std::size_t p) const {
   return {impl_->V[3 * p], impl_->V[3 * p + 1], impl_->V[3 * p + 2]};
+}
+
+void SystemDynamics::releaseLineEnd(std::size_t line, LineEvent::End end, const std::string& cause) {
+  impl_->lines.at(line)->releaseEnd(end, cause);
+}
+
+std::vector<LineEventRecord> SystemDynamics::lineEvents() const {
+  const Impl& im = *impl_;
+  std::vector<LineEventRecord> out;
+  for (std::size_t i = 0; i < im.lines.size(); ++i)
+    for (LineEventRecord r : im.lines[i]->eventLog()) {
+      r.t += im.line_t0[i];
+      r.line = im.system.lines[i].name;
+      out.push_back(r);
+    }
+  std::stable_sort(out.begin(), out.end(), [](const LineEventRecord& a, const LineEventRecord& b) { return a.t < b.t; });
+  return out;
 }
 
 std::vector<SystemPointResult> SystemDynamics::points() const {

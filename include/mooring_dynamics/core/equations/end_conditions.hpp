@@ -14,7 +14,8 @@
 //   2-D dynamics (eq2dyn, 8):         anchor 5 rows, top 3 rows
 //   3-D statics (eq3d, 16):           lower end 10 rows, top 6 rows
 //   3-D dynamics (eq3d, 16):          anchored lower end 10 rows, top 6; a free lower end 7 rows
-//                                     and its top (tow point or drifting buoy) 9 rows
+//                                     and its top (tow point or drifting buoy) 9 rows; released
+//                                     ends the rows of the end they replace
 #pragma once
 
 #include <functional>
@@ -136,6 +137,21 @@ std::unique_ptr<EndCondition3D> makeMovingAnchor3D(const Problem& problem, std::
 /// The top of a 3-D line: a position, force or surface-buoy top (driven by the top motion in
 /// dynamics), a subsurface body, a tow point (over a free lower end) or a drifting buoy.
 std::unique_ptr<EndCondition3D> makeUpperEnd3D(const Problem& problem, const Material& top_material);
+
+/// Released ends (line events, docs/method.md "Line events"): an end let go, or the two new ends
+/// of a line that parts. A free end carries no force: the internal force is zero at the new
+/// level, and the end is moment free. A part of a line needs one node whose position follows
+/// its velocity (dx/dt = V) when neither of its ends holds a position; the row count says where
+/// those three rows go, so that every part keeps N rows per node (the band of the Newton matrix
+/// does not change):
+///   upper end: `rows` 6 (moment free, F = 0) or 9 (and dx/dt = V);
+///   lower end: `rows` 10 (F = 0, the lower end's gauge, dx/dt = V) or 7 (without dx/dt = V).
+/// A released end replaces an end of the same row count; a parted interval holds an upper end
+/// of 16 - r rows at its lower node and a lower end of 16 - u rows at its upper node, r and u
+/// being the line's lower- and upper-end rows. Dynamics only (the static rows exist for
+/// completeness; statics of a let-go line are not defined).
+std::unique_ptr<EndCondition3D> makeReleasedUpperEnd3D(const Material& top_material, int rows);
+std::unique_ptr<EndCondition3D> makeReleasedLowerEnd3D(const Material& end_material, int rows);
 
 }  // namespace core
 }  // namespace mooring_dynamics

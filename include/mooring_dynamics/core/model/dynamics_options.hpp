@@ -51,6 +51,46 @@ struct TopMotion {
   std::string validate() const;
 };
 
+/// A line event in a dynamic run (`dynamics.events`, issue 21): an end of the line let go, or
+/// the line parting. After it the loose ends are free ends that carry no force (docs/method.md,
+/// "Line events"); 3-D formulation only.
+struct LineEvent {
+  enum class Type { Release, Break };
+  /// The line's ends: its top (upper end) and its anchor (lower end).
+  enum class End { Top, Anchor };
+  Type type = Type::Release;
+  End end = End::Top;   ///< Release: the end let go
+  /// Release, timed Break: the time [s] (>= 0); < 0 when not given (a Break on tension).
+  double t = -1.0;
+  /// Break: the line parts when a node's tension first exceeds this [N] (0: not given).
+  double tension = 0.0;
+  /// Break: ... or first reaches its material's `mbl` (`tension: mbl`).
+  bool at_mbl = false;
+  /// Timed Break: the arclength of the break from the lower end [m]; < 0: at the node with the
+  /// largest tension at time t (as a tension-triggered break).
+  double s = -1.0;
+  /// In a system file: the name of the line (empty in a single-line problem).
+  std::string line;
+
+  bool onTension() const { return type == Type::Break && (tension > 0.0 || at_mbl); }
+  /// Empty when valid, else "<key>.<field> = value: constraint" with `key` the event's key
+  /// (e.g. "dynamics.events[0]").
+  std::string validate(const std::string& key) const;
+};
+
+/// A line event that happened (what a run reports).
+struct LineEventRecord {
+  double t = 0.0;           ///< [s]
+  /// "released top", "released anchor" or "parted": the line parts between nodes `node` and
+  /// `node` + 1 (a break at an end node is that end's release).
+  std::string what;
+  int node = 0;             ///< the node of the release or, when parted, the lower node of the cut
+  double s = 0.0;           ///< its arclength from the lower end [m]
+  double tension = 0.0;     ///< the largest tension of the line just before the event [N]
+  std::string cause;        ///< "at t = 30 s", "tension 2.1e5 N > 2e5 N at node 12", "released by a service call"
+  std::string line;         ///< systems: the line's name
+};
+
 struct DynamicOptions {
   double duration = 0.0;         ///< simulated time [s], > 0 for a dynamic run
   double dt = 0.1;               ///< base time step [s]; also the output grid unless output_interval is set
@@ -90,6 +130,8 @@ struct DynamicOptions {
   TopMotion top_motion;
   /// A real ship track (`dynamics.gnss`): GNSS fixes and headings drive the top or the vessel.
   GnssOptions gnss;
+  /// Releases and breaks (`dynamics.events`), in the order given.
+  std::vector<LineEvent> events;
 
   std::string validate() const;
 };

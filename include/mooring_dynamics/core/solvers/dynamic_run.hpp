@@ -281,6 +281,7 @@ DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(do
     out.message = "reached t = " + std::to_string(out.t.back()) + " s of dynamics.duration = " +
                   std::to_string(opt.duration) + " s";
   }
+  if constexpr (!std::is_same_v<Solver, DynamicSolver2D>) out.events = solver.eventLog();
   const auto tot = solver.totals();
   out.steps = tot.steps;
   out.cuts = tot.cuts;

@@ -39,6 +39,17 @@ class DynamicSolver3D {
   /// failure the state stays at the last converged time and the report says where it failed.
   StepReport advanceTo(double t_end);
 
+  /// Line events (issue 21; docs/method.md "Line events"), besides the problem's
+  /// dynamics.events which advanceTo makes happen itself. Let an end go now, between steps: from
+  /// the next step on it is a free end that carries no force. `cause` goes into the log. Throws
+  /// std::logic_error when that end is free already.
+  void releaseEnd(LineEvent::End end, const std::string& cause);
+  /// Part the line now at node `node` (in an interval beside it; at an end node, that end is let
+  /// go). Throws std::logic_error when it has parted already.
+  void partAt(int node, const std::string& cause);
+  /// The events that happened, in order.
+  const std::vector<LineEventRecord>& eventLog() const;
+
   double time() const;
   const StaticResult& initialStatic() const;
   StaticResult snapshot() const;

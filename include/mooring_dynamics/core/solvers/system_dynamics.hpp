@@ -100,6 +100,14 @@ class SystemDynamics {
   /// step fails and advanceTo returns false with the failed line named.
   void setRestartFailedGroups(bool restart);
 
+  /// Line events (issue 21): `options.events` naming a line happen by themselves in advanceTo;
+  /// this lets line `line`'s end go now (from the next step on it is a free end that pulls
+  /// nothing). Throws std::out_of_range for a bad index, std::logic_error when the end is free
+  /// already. A group with a line that was let go or parted does not restart from statics.
+  void releaseLineEnd(std::size_t line, LineEvent::End end, const std::string& cause);
+  /// Every line's events so far, in time order (system time, line named).
+  std::vector<LineEventRecord> lineEvents() const;
+
   double time() const;
   const SystemStaticResult& initialStatic() const;
   /// Points now: positions [m], the lines' pulls [N] and, for free points, the velocity is in
