@@ -125,8 +125,14 @@ struct RunSummary {
   double simulated_time = 0.0, duration = 0.0, wall_seconds = 0.0;
   std::size_t samples = 0;
   std::string timeseries;     ///< the CSV file written
+  std::vector<core::LineEventRecord> events;  ///< line events that happened (releases, breaks)
 };
 void writeRunSummaryJson(std::ostream& f, const RunSummary& s);  // cmd_system.cpp
+
+/// A line event as one line of a summary: "t = 30 s: leg_e released top (at t = 30 s)" (cmd_dynamic.cpp).
+std::string lineEventText(const core::LineEventRecord& e);
+/// The "events" array of a dynamic_summary.json, without the key (cmd_dynamic.cpp).
+std::string lineEventsJson(const std::vector<core::LineEventRecord>& events);
 
 int runVesselDynamic(const core::SystemProblem& s, int threads, const std::string& out_dir, std::ostream& out,
                      std::ostream& err);

@@ -165,6 +165,30 @@ std::string peakJson(const core::TensionPeak& k) {
          ", \"utilization_s\": " + jsonNum(k.s_util) + ", \"utilization_t\": " + jsonNum(k.t_util) + "}";
 }
 
+}  // namespace
+
+std::string lineEventText(const core::LineEventRecord& e) {
+  std::string what = e.what;
+  if (e.what == "parted")
+    what = "parted between nodes " + std::to_string(e.node) + " and " + std::to_string(e.node + 1) + " (s = " +
+           fmtNum("%.2f", e.s) + " m)";
+  return "t = " + fmtNum("%g", e.t) + " s: " + (e.line.empty() ? "" : e.line + " ") + what +
+         (e.what == "retired" ? "" : ", largest tension " + fmtNum("%.1f", e.tension) + " N") + " (" + e.cause + ")";
+}
+
+std::string lineEventsJson(const std::vector<core::LineEventRecord>& events) {
+  std::string o = "[";
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const core::LineEventRecord& e = events[i];
+    o += (i ? ",\n    " : "\n    ") + std::string("{\"t\": ") + jsonNum(e.t) + ", \"what\": " + jsonStr(e.what) +
+         (e.line.empty() ? "" : ", \"line\": " + jsonStr(e.line)) + ", \"node\": " + std::to_string(e.node) +
+         ", \"s\": " + jsonNum(e.s) + ", \"tension\": " + jsonNum(e.tension) + ", \"cause\": " + jsonStr(e.cause) + "}";
+  }
+  return o + (events.empty() ? "]" : "\n  ]");
+}
+
+namespace {
+
 void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core::DynamicSeries& r,
                              const DynamicFigures& g) {
   const core::DynamicOptions& d = p.dynamics;
@@ -183,7 +207,8 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
     << "  \"top_tension\": {\"mean\": " << jsonNum(g.top.mean) << ", \"std\": " << jsonNum(g.top.std)
     << ", \"min\": " << jsonNum(g.top.min) << ", \"max\": " << jsonNum(g.top.max) << "},\n"
     << "  \"static_top_tension\": " << jsonNum(g.static_top) << ",\n"
-    << "  \"max_tension\": " << peakJson(r.peak) << ",\n";
+    << "  \"max_tension\": " << peakJson(r.peak) << ",\n"
+    << "  \"events\": " << lineEventsJson(r.events) << ",\n";
   if (r.initial_static.drifting && g.simulated > 0.0)
     f << "  \"static_drift_velocity\": {\"x\": " << jsonNum(r.initial_static.drift_vx)
       << ", \"y\": " << jsonNum(r.initial_static.drift_vy) << "},\n"
@@ -218,6 +243,7 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
     << " N, min " << fmtNum("%.1f", g.top.min) << " N, max " << fmtNum("%.1f", g.top.max) << " N\n";
   o << "  static top     " << fmtNum("%.1f", g.static_top) << " N\n";
   o << "  max tension    " << core::tensionPeakText(r.peak, true) << "\n";
+  for (const auto& e : r.events) o << "  event          " << lineEventText(e) << "\n";
   if (r.initial_static.drifting && g.simulated > 0.0)
     o << "  drift          static x = " << fmtNum("%.4f", r.initial_static.drift_vx) << ", y = "
       << fmtNum("%.4f", r.initial_static.drift_vy) << " m/s; run mean x = "

@@ -93,7 +93,7 @@ void writeRunSummaryJson(std::ostream& f, const RunSummary& s) {
     << ",\n  \"simulated_time\": " << csvNum(s.simulated_time) << ",\n  \"duration\": " << csvNum(s.duration)
     << ",\n  \"samples\": " << s.samples << ",\n  \"wall_seconds\": " << csvNum(s.wall_seconds)
     << ",\n  \"real_time_factor\": " << csvNum(s.wall_seconds > 0.0 ? s.simulated_time / s.wall_seconds : 0.0)
-    << ",\n  \"timeseries\": " << jsonText(s.timeseries) << "\n}\n";
+    << ",\n  \"events\": " << lineEventsJson(s.events) << ",\n  \"timeseries\": " << jsonText(s.timeseries) << "\n}\n";
 }
 
 /// Create the output directory; false (and the message on err) when that fails.
@@ -272,6 +272,8 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
         << " N\n";
     out << "  " << s.lines[i].name << " max tension  " << core::tensionPeakText(peaks[i], true) << "\n";
   }
+  const std::vector<core::LineEventRecord> events = sim->lineEvents();
+  for (const auto& e : events) out << "  event          " << lineEventText(e) << "\n";
   out << "  solver         " << sim->pointIterations() << " point iterations, " << sim->lineSteps() << " line steps\n";
   out << "  wall time      " << fmtNum("%.3g", wall) << " s, real-time factor " << fmtNum("%.3g", sim->time() / wall)
       << "\n";
@@ -296,6 +298,7 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
     RunSummary sum;
     sum.problem = s.name;
     sum.kind = "system";
+    sum.events = events;
     sum.completed = ok;
     sum.message = ok ? "" : why;
     sum.simulated_time = t_good;

@@ -428,3 +428,70 @@ TEST(ProblemIo, WavesErrors) {
   EXPECT_ERROR_HAS(waves("[regular]"), "environment.waves", "expected a map");
   EXPECT_ERROR_HAS(waves("{type: jonswap, hs: \"2\", tp: 8}"), "environment.waves.hs = \"2\"", "expected a number");
 }
+
+// ---- dynamics.events (issue 21) ---------------------------------------------------------------
+
+TEST(ProblemIo, DynamicsEvents) {
+  const Problem p = loadProblemFromString("model: 3d\n" + minimalWith(R"(dynamics:
+  duration: 60
+  events:
+    - {type: release, end: anchor, t: 12.5}
+    - {type: break, tension: 2.0e5}
+)"));
+  ASSERT_EQ(p.dynamics.events.size(), 2u);
+  EXPECT_EQ(p.dynamics.events[0].type, LineEvent::Type::Release);
+  EXPECT_EQ(p.dynamics.events[0].end, LineEvent::End::Anchor);
+  EXPECT_EQ(p.dynamics.events[0].t, 12.5);
+  EXPECT_EQ(p.dynamics.events[1].type, LineEvent::Type::Break);
+  EXPECT_EQ(p.dynamics.events[1].tension, 2.0e5);
+  EXPECT_LT(p.dynamics.events[1].t, 0.0);
+  EXPECT_TRUE(p.dynamics.events[1].onTension());
+  const Problem q = loadProblemFromString(R"(model: 3d
+materials:
+  chain: {EA: 6.44e7, EI: 10, mass: 3.73, wet_weight: 31.85, diameter: 0.0495, cdn: 0.5, cdt: 0.05, mbl: 3.0e6}
+line:
+  - {material: chain, length: 150}
+top:
+  position: {x: 100, z: 0}
+dynamics: {duration: 60, events: [{type: break, tension: mbl}, {type: release, end: top, t: 0}]}
+)");
+  EXPECT_TRUE(q.dynamics.events[0].at_mbl);
+  const Problem r = loadProblemFromString("model: 3d\n" + minimalWith("dynamics: {duration: 60, events: [{type: break, t: 3, s: 75}]}\n"));
+  EXPECT_EQ(r.dynamics.events[0].s, 75.0);
+}
+
+TEST(ProblemIo, DynamicsEventErrorsNameTheEventAndTheConstraint) {
+  const std::string m3 = "model: 3d\n";
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: snap, t: 1}]}\n"),
+                   "dynamics.events[0].type = \"snap\"", "release, break");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: release, t: 1}]}\n"),
+                   "dynamics.events[0].end", "required");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: release, end: middle, t: 1}]}\n"),
+                   "dynamics.events[0].end = \"middle\"", "top or anchor");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: release, end: top}]}\n"),
+                   "dynamics.events[0].t", "required for a release");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: break, t: 1, tension: 5}]}\n"),
+                   "dynamics.events[0]", "exactly one of t");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: break}]}\n"), "exactly one of t");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: break, tension: -5}]}\n"),
+                   "dynamics.events[0].tension = -5", "> 0");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: break, tension: 5, s: 3}]}\n"),
+                   "dynamics.events[0].s", "goes with t");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: break, t: 1, end: top}]}\n"),
+                   "dynamics.events[0].end", "goes with a release");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: release, end: top, t: 61}]}\n"),
+                   "dynamics.events[0].t = 61", "after dynamics.duration");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: break, t: 1}, {type: break, t: 2}]}\n"),
+                   "dynamics.events[1]", "a second break");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: release, end: top, t: 1}, "
+                                    "{type: release, end: top, t: 2}]}\n"),
+                   "dynamics.events[1]", "released by events[0]");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: break, t: 1, s: 151}]}\n"),
+                   "dynamics.events[0].s = 151", "beyond the top");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: break, tension: mbl}]}\n"),
+                   "dynamics.events[0].tension = mbl", "no material of the line has an mbl");
+  EXPECT_ERROR_HAS(m3 + minimalWith("dynamics: {duration: 60, events: [{type: break, t: 1, line: leg}]}\n"),
+                   "dynamics.events[0].line = leg", "only a system file");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {duration: 60, events: [{type: break, t: 1}]}\n"),
+                   "dynamics.events[0]", "3-D solver", "formulation: 3d");
+}

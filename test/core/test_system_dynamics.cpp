@@ -379,3 +379,62 @@ TEST(SystemDynamics, FailedBuoyLegRestartsItsGroupTheOtherGroupKeepsItsBits) {
   // Buoy A really moved (the comparison is not between two resting states).
   EXPECT_GT(clean.points()[0].x - clean.initialStatic().points[0].x, 0.01);
 }
+
+// Line events (issue 21): a three-leg buoy loses leg0 (its anchor on +x) at t = 1 s. The two
+// legs left pull it toward -x, on the axis by symmetry, toward the two-leg static equilibrium
+// (solved independently, the system without leg0); the let-go leg pulls nothing from the
+// release on (and, a chain collapsing slack onto the seabed, is retired when its solver gives
+// up), and the event is reported.
+TEST(SystemDynamics, ThreeLegBuoyLosingALegDriftsTowardTheTwoLegEquilibrium) {
+  constexpr double kRelease = 1.0, kEnd = 40.0;  // [s]
+  // Symmetry about the x axis: legs 1 and 2 are mirror images, as in the pulled-down test.
+  constexpr double kMirrorRelTol = 1e-6;
+  SystemProblem two = threeLeg();
+  two.lines.erase(two.lines.begin());
+  two.points.erase(two.points.begin() + 1);
+  for (SystemLine& l : two.lines) --l.from;
+  const SystemStaticResult eq2 = solveSystemStatic(two);
+  ASSERT_TRUE(eq2.summary.converged) << eq2.summary.message;
+  const double x2 = eq2.points[0].x;
+
+  DynamicOptions o;
+  o.dt = 0.5;
+  o.duration = kEnd;
+  LineEvent e;
+  e.type = LineEvent::Type::Release;
+  e.end = LineEvent::End::Top;
+  e.t = kRelease;
+  e.line = "leg0";
+  o.events = {e};
+  SystemDynamics sim(threeLeg(), o);
+  const double x0 = sim.points()[0].x, T1_static = sim.line(1).topTension();
+  ASSERT_LT(x2, x0 - 5.0) << "the two legs' equilibrium lies toward -x";
+  double peak1 = 0.0, last_x = x0;
+  for (int i = 1; i <= static_cast<int>(kEnd / o.dt); ++i) {
+    std::string why;
+    ASSERT_TRUE(sim.advanceTo(o.dt * i, &why)) << why;
+    const auto p = sim.points()[0];
+    const double T1 = sim.line(1).topTension(), T2 = sim.line(2).topTension();
+    EXPECT_NEAR(T1, T2, kMirrorRelTol * T1) << sim.time();
+    EXPECT_NEAR(p.y, 0.0, kMirrorRelTol * std::abs(x0 - x2)) << sim.time();
+    if (sim.time() > kRelease + 1e-9) {
+      EXPECT_NEAR(sim.line(0).topTension(), 0.0, 1e-6 * T1_static) << "let go at " << sim.time();
+      EXPECT_LE(p.x, last_x + 1e-6) << "drifts toward -x without coming back (overdamped by the chain), t = " << sim.time();
+    }
+    peak1 = std::max(peak1, T1);
+    last_x = p.x;
+  }
+  const auto events = sim.lineEvents();
+  ASSERT_GE(events.size(), 1u);
+  EXPECT_EQ(events[0].line, "leg0");
+  EXPECT_EQ(events[0].what, "released top");
+  EXPECT_NEAR(events[0].t, kRelease, 1e-9);
+  std::printf("three-leg buoy losing leg0: x %.2f -> %.2f m (two-leg equilibrium %.2f m); leg1 static %.0f N, "
+              "peak %.0f N, end %.0f N; %zu events\n",
+              x0, last_x, x2, T1_static, peak1, sim.line(1).topTension(), events.size());
+  // With no current the two legs balance only where both pull along y, at x = -125 m between
+  // their anchors: a long, slow drift (measured: 31 m in the 39 s).
+  EXPECT_LT(last_x, x0 - 10.0);
+  EXPECT_GT(last_x, x2);
+  EXPECT_LT(sim.line(1).topTension(), T1_static) << "the buoy moved toward the remaining anchors";
+}

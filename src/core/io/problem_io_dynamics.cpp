@@ -350,7 +350,7 @@ void readEvents(const Item& it, DynamicOptions& d) {
   for (std::size_t i = 0; i < items.size(); ++i) {
     const Map m(items[i], {"type", "end", "t", "tension", "s", "line"});
     LineEvent e;
-    const Item ti = m.at("type");
+    const Item ti = m.required("type", "release or break");
     const std::string type = readString(ti);
     if (type == "release")
       e.type = LineEvent::Type::Release;
@@ -359,7 +359,7 @@ void readEvents(const Item& it, DynamicOptions& d) {
     else
       ti.failQuoted("unknown event (known: release, break)");
     if (e.type == LineEvent::Type::Release) {
-      const Item ei = m.at("end");
+      const Item ei = m.required("end", "top or anchor");
       const std::string end = readString(ei);
       if (end == "top")
         e.end = LineEvent::End::Top;

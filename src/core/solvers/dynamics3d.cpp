@@ -660,6 +660,9 @@ void DynamicSolver3D::releaseEnd(LineEvent::End end, const std::string& cause) {
 }
 void DynamicSolver3D::partAt(int node, const std::string& cause) { core::partAt(*impl_, node, cause); }
 const std::vector<LineEventRecord>& DynamicSolver3D::eventLog() const { return impl_->event_log; }
+bool DynamicSolver3D::endReleased(LineEvent::End end) const {
+  return end == LineEvent::End::Top ? impl_->upper_kept != nullptr : impl_->lower_kept != nullptr;
+}
 
 double DynamicSolver3D::jacobianFiniteDifferenceError(double dt) const {
   const Impl& im = *impl_;

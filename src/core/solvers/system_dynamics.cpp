@@ -49,6 +49,19 @@ struct SystemDynamics::Impl {
   std::function<RigidMotion(double)> vessel_motion;  ///< world frame; holds at the reference pose by default
   RigidPose vessel_pose;                             ///< now
   std::vector<std::size_t> vessel_lines;             ///< lines with an end on the vessel and none on a free point
+  /// Lines let go from everything that moves whose solver then failed (a released chain
+  /// collapsing on the seabed): no longer advanced, held at their last converged state.
+  std::vector<char> retired;
+  std::vector<LineEventRecord> retired_log;
+
+  /// Line i pulls on nothing that moves: its top is let go, and its lower end is on a fixed
+  /// anchor, let go, or free (what happens to it no longer changes the system).
+  bool loose(std::size_t i) const {
+    const SystemLine& l = system.lines[i];
+    if (!lines[i]->endReleased(LineEvent::End::Top)) return false;
+    if (l.from == SystemLine::kFreeEnd || lines[i]->endReleased(LineEvent::End::Anchor)) return true;
+    return !system.points[l.from].free() && !isVessel(l.from);
+  }
 
   bool isVessel(std::size_t p) const { return p != SystemLine::kFreeEnd && system.points[p].type == SystemPoint::Type::Vessel; }
 
@@ -253,6 +266,7 @@ SystemDynamics::SystemDynamics(const SystemProblem& system, const DynamicOptions
     if (!at_free && (im.isVessel(l.to) || im.isVessel(l.from))) im.vessel_lines.push_back(i);
   }
   im.line_t0.assign(system.lines.size(), 0.0);
+  im.retired.assign(system.lines.size(), 0);
   // Groups: lines joined through free points (union-find over the lines at each free point).
   std::vector<std::size_t> root(system.lines.size());
   for (std::size_t i = 0; i < root.size(); ++i) root[i] = i;
@@ -330,6 +344,7 @@ std::vector<LineEventRecord> SystemDynamics::lineEvents() const {
       r.line = im.system.lines[i].name;
       out.push_back(r);
     }
+  out.insert(out.end(), im.retired_log.begin(), im.retired_log.end());
   std::stable_sort(out.begin(), out.end(), [](const LineEventRecord& a, const LineEventRecord& b) { return a.t < b.t; });
   return out;
 }
@@ -404,7 +419,10 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
     };
     // Run the given lines through the step, side by side on the pool (each writes only its own
     // solver and report). Returns the failed ones, in line order: (line, "line <name>: why").
-    auto runSet = [&](const std::vector<std::size_t>& set, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+    auto runSet = [&](const std::vector<std::size_t>& all, const Eigen::VectorXd& X1, const Eigen::VectorXd& V1) {
+      std::vector<std::size_t> set;
+      for (std::size_t i : all)
+        if (!im.retired[i]) set.push_back(i);
       std::vector<StepReport> reports(set.size());
       im.pool->parallelFor(set.size(), [&](std::size_t k) {
         const std::size_t i = set[k];
@@ -422,6 +440,19 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
         if (reports[k].ok && im.fail_hook && im.fail_hook(set[k], t1)) {
           reports[k].ok = false;
           reports[k].message = "failure injected (test hook)";
+        }
+        if (!reports[k].ok && im.loose(set[k])) {
+          // Let go from everything that moves: held where it was, reported, and the step goes on.
+          im.lines[set[k]]->restore(*saved[set[k]]);
+          im.retired[set[k]] = 1;
+          LineEventRecord r;
+          r.t = im.t;
+          r.what = "retired";
+          r.line = im.system.lines[set[k]].name;
+          r.cause = "the loose line stopped converging (" + reports[k].message +
+                    "); it pulls on nothing that moves and is held where it was from here on";
+          im.retired_log.push_back(r);
+          continue;
         }
         if (!reports[k].ok) failed.emplace_back(set[k], "line " + im.system.lines[set[k]].name + ": " + reports[k].message);
       }

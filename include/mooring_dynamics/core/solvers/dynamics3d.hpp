@@ -49,6 +49,8 @@ class DynamicSolver3D {
   void partAt(int node, const std::string& cause);
   /// The events that happened, in order.
   const std::vector<LineEventRecord>& eventLog() const;
+  /// That end was let go (by an event or releaseEnd; a break at an end node lets it go too).
+  bool endReleased(LineEvent::End end) const;
 
   double time() const;
   const StaticResult& initialStatic() const;

@@ -103,7 +103,10 @@ class SystemDynamics {
   /// Line events (issue 21): `options.events` naming a line happen by themselves in advanceTo;
   /// this lets line `line`'s end go now (from the next step on it is a free end that pulls
   /// nothing). Throws std::out_of_range for a bad index, std::logic_error when the end is free
-  /// already. A group with a line that was let go or parted does not restart from statics.
+  /// already. A group with a line that was let go or parted does not restart from statics. A
+  /// line let go from everything that moves (its top let go, its lower end on a fixed anchor or
+  /// free) whose solver then fails (a chain collapsing onto the seabed) is retired: held at its
+  /// last converged state, no longer advanced, and reported as a "retired" event.
   void releaseLineEnd(std::size_t line, LineEvent::End end, const std::string& cause);
   /// Every line's events so far, in time order (system time, line named).
   std::vector<LineEventRecord> lineEvents() const;
