@@ -129,8 +129,6 @@ struct RunSummary {
 };
 void writeRunSummaryJson(std::ostream& f, const RunSummary& s);  // cmd_system.cpp
 
-/// A line event as one line of a summary: "t = 30 s: leg_e released top (at t = 30 s)" (cmd_dynamic.cpp).
-std::string lineEventText(const core::LineEventRecord& e);
 /// The "events" array of a dynamic_summary.json, without the key (cmd_dynamic.cpp).
 std::string lineEventsJson(const std::vector<core::LineEventRecord>& events);
 

@@ -167,15 +167,6 @@ std::string peakJson(const core::TensionPeak& k) {
 
 }  // namespace
 
-std::string lineEventText(const core::LineEventRecord& e) {
-  std::string what = e.what;
-  if (e.what == "parted")
-    what = "parted between nodes " + std::to_string(e.node) + " and " + std::to_string(e.node + 1) + " (s = " +
-           fmtNum("%.2f", e.s) + " m)";
-  return "t = " + fmtNum("%g", e.t) + " s: " + (e.line.empty() ? "" : e.line + " ") + what +
-         (e.what == "retired" ? "" : ", largest tension " + fmtNum("%.1f", e.tension) + " N") + " (" + e.cause + ")";
-}
-
 std::string lineEventsJson(const std::vector<core::LineEventRecord>& events) {
   std::string o = "[";
   for (std::size_t i = 0; i < events.size(); ++i) {
@@ -243,7 +234,7 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
     << " N, min " << fmtNum("%.1f", g.top.min) << " N, max " << fmtNum("%.1f", g.top.max) << " N\n";
   o << "  static top     " << fmtNum("%.1f", g.static_top) << " N\n";
   o << "  max tension    " << core::tensionPeakText(r.peak, true) << "\n";
-  for (const auto& e : r.events) o << "  event          " << lineEventText(e) << "\n";
+  for (const auto& e : r.events) o << "  event          " << core::lineEventText(e) << "\n";
   if (r.initial_static.drifting && g.simulated > 0.0)
     o << "  drift          static x = " << fmtNum("%.4f", r.initial_static.drift_vx) << ", y = "
       << fmtNum("%.4f", r.initial_static.drift_vy) << " m/s; run mean x = "

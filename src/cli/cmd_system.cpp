@@ -273,7 +273,7 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
     out << "  " << s.lines[i].name << " max tension  " << core::tensionPeakText(peaks[i], true) << "\n";
   }
   const std::vector<core::LineEventRecord> events = sim->lineEvents();
-  for (const auto& e : events) out << "  event          " << lineEventText(e) << "\n";
+  for (const auto& e : events) out << "  event          " << core::lineEventText(e) << "\n";
   out << "  solver         " << sim->pointIterations() << " point iterations, " << sim->lineSteps() << " line steps\n";
   out << "  wall time      " << fmtNum("%.3g", wall) << " s, real-time factor " << fmtNum("%.3g", sim->time() / wall)
       << "\n";

@@ -165,6 +165,7 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
   reset_srv_ = pnh_.advertiseService("reset", &VesselNode::onReset, this);
   solve_srv_ = pnh_.advertiseService("solve_static", &VesselNode::onSolveStatic, this);
+  release_srv_ = pnh_.advertiseService("release", &VesselNode::onRelease, this);
   std::string input;
   if (motion_source_ == "pose") {
     motion_sub_ = pnh_.subscribe("vessel_pose", 100, &VesselNode::onPose, this);
@@ -338,9 +339,12 @@ void VesselNode::publish(const ros::Time& stamp) {
   for (const core::FairleadForce& f : w.fairleads)
     if (f.line < fairlead_pubs_.size() && fairlead_pubs_[f.line])
       fairlead_pubs_[f.line].publish(toFairleadWrench(f, pose, frame_id_, stamp));
+  const std::vector<core::LineEventRecord> events = lockstep_->dynamics().lineEvents();
   for (std::size_t i = 0; i < system_.lines.size(); ++i) {
     CableState cs = toCableState(lockstep_->dynamics().line(i), system_.lines[i].name, frame_id_, stamp);
     cs.converged = !failed_sample_;
+    for (const core::LineEventRecord& e : events)
+      if (e.line == system_.lines[i].name) cs.events.push_back(core::lineEventText(e));
     state_pubs_[i].publish(cs);
   }
   have_output_ = true;
@@ -410,7 +414,38 @@ void VesselNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   std::vector<VesselMonitor::Status> statuses = monitor_->summarise(now);
   if (gnss_ && !statuses.empty())
     for (const auto& kv : gnss_->values()) statuses.front().values.push_back(kv);
+  // Line events (a line let go or parted): counted, the last one shown, and a warning.
+  const std::vector<core::LineEventRecord> events = lockstep_->dynamics().lineEvents();
+  if (!statuses.empty()) {
+    VesselMonitor::Status& o = statuses.front();
+    o.values.emplace_back("line events", std::to_string(events.size()));
+    if (!events.empty()) {
+      o.values.emplace_back("last line event", core::lineEventText(events.back()));
+      if (o.level < VesselMonitor::WARN) {
+        o.level = VesselMonitor::WARN;
+        o.message = "line event: " + core::lineEventText(events.back());
+      }
+    }
+  }
   diag_pub_.publish(toDiagnostics(statuses, ros::this_node::getName(), "vessel lockstep", system_.name, ros::Time::now()));
+}
+
+bool VesselNode::onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res) {
+  core::LineEvent::End end = core::LineEvent::End::Top;
+  if (req.end == "anchor") {
+    end = core::LineEvent::End::Anchor;
+  } else if (req.end != "top") {
+    res.success = false;
+    res.message = "end = \"" + req.end + "\": must be top or anchor";
+    return true;
+  }
+  const std::string err = lockstep_->releaseLine(req.line, end, "released by ~release");
+  res.success = err.empty();
+  res.message = err.empty() ? "line " + req.line + ": " + req.end + " let go at solver time " +
+                                  std::to_string(lockstep_->solverTime()) + " s; it pulls nothing from the next sample on"
+                            : err;
+  if (res.success) ROS_WARN("mooring_dynamics: %s", res.message.c_str());
+  return true;
 }
 
 bool VesselNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {

@@ -37,6 +37,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "mooring_dynamics/CableState.h"
+#include "mooring_dynamics/ReleaseLine.h"
 #include "mooring_dynamics/VesselStatics.h"
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
@@ -205,6 +206,7 @@ const char* const kLineNames[3] = {"bow", "port_quarter", "stbd_quarter"};  // o
 struct Listener {
   std::map<uint64_t, geometry_msgs::WrenchStamped> body, world;
   std::map<uint64_t, double> top[3];  ///< each line's top tension (CableState), by stamp
+  std::vector<std::string> events[3];  ///< each line's events (CableState), of its last state
   ros::Subscriber s1, s2;
   std::vector<ros::Subscriber> lines;
   Listener() {
@@ -213,6 +215,7 @@ struct Listener {
       lines.push_back(nh.subscribe<mooring_dynamics::CableState>(
           g_node + "/lines/" + kLineNames[i] + "/cable_state", 1000, [this, i](const mooring_dynamics::CableState::ConstPtr& m) {
             if (!m->tension.empty()) top[i][m->header.stamp.toNSec()] = m->tension.back();
+            events[i] = m->events;
           }));
     s1 = nh.subscribe<geometry_msgs::WrenchStamped>(g_node + "/wrench", 1000, [this](const geometry_msgs::WrenchStamped::ConstPtr& m) {
       body[m->header.stamp.toNSec()] = *m;
@@ -498,6 +501,80 @@ TEST(VesselNode, SolveStaticService) {
   ASSERT_TRUE(ros::service::call(srv_name, bad2));
   EXPECT_FALSE(bad2.response.success);
   EXPECT_NE(bad2.response.message.find("offset_dof"), std::string::npos) << bad2.response.message;
+}
+
+// ~release (issue 21): the bow line let go at its fairlead pulls nothing from the next sample on;
+// the event is on its CableState and in /diagnostics; bad requests name the field. Runs last
+// (it changes the node's lines for good).
+TEST(VesselNode, ReleaseServiceLetsALineGo) {
+  if (g_mode != "live" || g_source != "pose") GTEST_SKIP() << "live PoseStamped only";
+  Listener& l = *g_listener;
+  ros::NodeHandle nh;
+  ros::Publisher pub = nh.advertise<geometry_msgs::PoseStamped>(g_node + "/vessel_pose", 100);
+  ASSERT_TRUE(connect(&pub));
+  std::map<std::string, std::string> overall;
+  ros::Subscriber diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& st : m->status)
+          if (st.name.find("vessel lockstep") != std::string::npos) {
+            overall.clear();
+            for (const auto& kv : st.values) overall[kv.key] = kv.value;
+          }
+      });
+  const std::string srv_name = g_node + "/release";
+  ASSERT_TRUE(ros::service::waitForService(srv_name, ros::Duration(20.0)));
+  mooring_dynamics::ReleaseLine bad;
+  bad.request.line = "mast";
+  bad.request.end = "top";
+  ASSERT_TRUE(ros::service::call(srv_name, bad));
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("line = mast: no line of that name (lines: bow, port_quarter, stbd_quarter)"),
+            std::string::npos)
+      << bad.response.message;
+  bad.request.line = "bow";
+  bad.request.end = "middle";
+  ASSERT_TRUE(ros::service::call(srv_name, bad));
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("end = \"middle\": must be top or anchor"), std::string::npos) << bad.response.message;
+
+  mooring_dynamics::ReleaseLine rel;
+  rel.request.line = "bow";
+  rel.request.end = "top";
+  ASSERT_TRUE(ros::service::call(srv_name, rel));
+  ASSERT_TRUE(rel.response.success) << rel.response.message;
+  ASSERT_TRUE(ros::service::call(srv_name, rel));
+  EXPECT_FALSE(rel.response.success) << "the same end twice";
+  EXPECT_NE(rel.response.message.find("let go already"), std::string::npos) << rel.response.message;
+
+  // The next samples: the bow line's top tension is gone; the other two still pull.
+  const ros::Time t_last = kStart + ros::Duration(kDt * (kSamples - 1));
+  std::vector<ros::Time> stamps;
+  for (int k = 5; k <= 8; ++k) stamps.push_back(t_last + ros::Duration(0.1 * k));
+  for (const ros::Time& st : stamps) {
+    geometry_msgs::PoseStamped m;
+    m.header.stamp = st;
+    m.header.frame_id = "world";
+    m.pose.orientation.w = 1.0;
+    pub.publish(m);
+    l.spinUntil([&] { return l.has(st); }, 20.0);
+    ASSERT_TRUE(l.has(st)) << "no answer after the release";
+  }
+  const uint64_t last = stamps.back().toNSec();
+  l.spinUntil([&] { return l.top[0].count(last) && l.top[1].count(last); }, 10.0);
+  ASSERT_TRUE(l.top[0].count(last) && l.top[1].count(last));
+  // Free end: the internal force at the top is zero to the Newton tolerance (1e-6 of the scale).
+  EXPECT_LT(std::abs(l.top[0][last]), 1e-3 * l.top[1][last]) << "bow top tension after the release";
+  EXPECT_GT(l.top[1][last], 1000.0);
+  ASSERT_EQ(l.events[0].size(), 1u);
+  EXPECT_NE(l.events[0][0].find("released top"), std::string::npos) << l.events[0][0];
+  EXPECT_TRUE(l.events[1].empty());
+  const geometry_msgs::Wrench& w = l.body[last].wrench;
+  for (double v : {w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y, w.torque.z}) EXPECT_TRUE(std::isfinite(v));
+  // The two quarter lines pull aft (-x) with nothing to balance them forward.
+  EXPECT_LT(w.force.x, -1000.0);
+  l.spinUntil([&] { return overall.count("line events") && overall["line events"] == "1"; }, 10.0);
+  EXPECT_EQ(overall["line events"], "1");
+  EXPECT_NE(overall["last line event"].find("bow released top"), std::string::npos) << overall["last line event"];
 }
 
 int main(int argc, char** argv) {

@@ -20,7 +20,7 @@
 //   ~marker_scale, ~publish_fairlead_frames, ~frame_prefix, ~publish_vessel_frame
 // Publications: ~wrench, ~wrench_world, ~lines/<line>/cable_state, ~lines/<line>/fairlead_wrench,
 // ~markers (when subscribed), /diagnostics, /tf (optional fairlead and vessel frames), /tf_static
-// (anchors, with the fairlead frames). Services: ~reset (std_srvs/Trigger), ~solve_static
+// (anchors, with the fairlead frames). Services: ~reset (std_srvs/Trigger), ~release (ReleaseLine), ~solve_static
 // (mooring_dynamics/VesselStatics).
 #pragma once
 
@@ -34,6 +34,8 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
+
+#include "mooring_dynamics/ReleaseLine.h"
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -69,6 +71,8 @@ class VesselNode {
 
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSolveStatic(VesselStatics::Request& req, VesselStatics::Response& res);
+  /// ~release: let go an end of a line (ReleaseLine).
+  bool onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res);
 
   const core::VesselLockstep& lockstep() const { return *lockstep_; }
   const VesselMonitor& monitor() const { return *monitor_; }
@@ -103,7 +107,7 @@ class VesselNode {
   std::vector<ros::Publisher> state_pubs_;     ///< per line
   std::vector<ros::Publisher> fairlead_pubs_;  ///< per line (empty publisher: the line has no end on the vessel)
   ros::Subscriber motion_sub_;
-  ros::ServiceServer reset_srv_, solve_srv_;
+  ros::ServiceServer reset_srv_, solve_srv_, release_srv_;
   ros::WallTimer tf_timer_, diag_timer_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;

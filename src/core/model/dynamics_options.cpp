@@ -1,6 +1,7 @@
 #include "mooring_dynamics/core/model/dynamics_options.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace mooring_dynamics {
@@ -44,6 +45,20 @@ std::string TopMotion::validate() const {
       return {};
   }
   return {};
+}
+
+std::string lineEventText(const LineEventRecord& e) {
+  auto num = [](const char* f, double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, f, v);
+    return std::string(b);
+  };
+  std::string what = e.what;
+  if (e.what == "parted")
+    what = "parted between nodes " + std::to_string(e.node) + " and " + std::to_string(e.node + 1) + " (s = " +
+           num("%.2f", e.s) + " m)";
+  return "t = " + num("%g", e.t) + " s: " + (e.line.empty() ? "" : e.line + " ") + what +
+         (e.what == "retired" ? "" : ", largest tension " + num("%.1f", e.tension) + " N") + " (" + e.cause + ")";
 }
 
 std::string LineEvent::validate(const std::string& key) const {

@@ -189,6 +189,21 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
   return r;
 }
 
+std::string VesselLockstep::releaseLine(const std::string& line, LineEvent::End end, const std::string& cause) {
+  std::string names;
+  for (std::size_t i = 0; i < system_.lines.size(); ++i) {
+    names += (i ? ", " : "") + system_.lines[i].name;
+    if (system_.lines[i].name != line) continue;
+    try {
+      sim_->releaseLineEnd(i, end, cause);
+    } catch (const std::logic_error& e) {
+      return "line = " + line + ": " + e.what();
+    }
+    return {};
+  }
+  return "line = " + line + ": no line of that name (lines: " + names + ")";
+}
+
 VesselLockstep::Result VesselLockstep::reset() {
   if (!started_) return {};
   const BodyTwist tw{last_motion_.pose.toBody(last_motion_.velocity), last_motion_.pose.toBody(last_motion_.angular_velocity)};

@@ -91,6 +91,10 @@ struct LineEventRecord {
   std::string line;         ///< systems: the line's name
 };
 
+/// One line of text for a summary or a diagnostic: "t = 30 s: leg_e released top, largest
+/// tension 42335.0 N (at t = 30 s)".
+std::string lineEventText(const LineEventRecord& e);
+
 struct DynamicOptions {
   double duration = 0.0;         ///< simulated time [s], > 0 for a dynamic run
   double dt = 0.1;               ///< base time step [s]; also the output grid unless output_interval is set

@@ -94,6 +94,12 @@ class VesselLockstep {
   double solverTime() const;
   const SystemDynamics& dynamics() const { return *sim_; }
   const SystemProblem& system() const { return system_; }
+  /// Let go the end of the line named `line` now (issue 21): from the next sample's step on it is
+  /// a free end that pulls nothing (SystemDynamics::releaseLineEnd). Empty when done, else why
+  /// not ("line = x: no line of that name (lines: a, b)", "... let go already"). A
+  /// re-initialisation (reset, a loop in the stream, repeated failures) starts every line
+  /// intact from statics again.
+  std::string releaseLine(const std::string& line, LineEvent::End end, const std::string& cause);
   /// The wrench now (state of the last published sample), and every line now.
   VesselWrench wrench() const { return sim_->vesselWrench(); }
   std::vector<StaticResult> lines() const;
