@@ -82,6 +82,15 @@ class Solver3D final : public LockstepSolver {
   core::StepReport advanceTo(double t) override { return s_.advanceTo(t); }
   core::StaticResult snapshot() const override { return s_.snapshot(); }
   double time() const override { return s_.time(); }
+  std::string releaseEnd(core::LineEvent::End end, const std::string& cause) override {
+    try {
+      s_.releaseEnd(end, cause);
+    } catch (const std::logic_error& e) {
+      return std::string("end = ") + (end == core::LineEvent::End::Top ? "top" : "anchor") + ": " + e.what();
+    }
+    return {};
+  }
+  std::vector<core::LineEventRecord> eventLog() const override { return s_.eventLog(); }
 
  private:
   core::DynamicSolver3D s_;
@@ -147,6 +156,16 @@ LockstepDriver::Result LockstepDriver::withReason(Result r, Reason reason) {
 }
 
 double LockstepDriver::solverTime() const { return solver_ ? solver_->time() : 0.0; }
+
+std::string LockstepDriver::release(core::LineEvent::End end, const std::string& cause) {
+  if (!threeD()) return "model = 2d: line events need model: 3d";
+  if (!started_ || !solver_) return "no motion sample yet: the run starts at the first one; let go after it";
+  return solver_->releaseEnd(end, cause);
+}
+
+std::vector<core::LineEventRecord> LockstepDriver::events() const {
+  return solver_ ? solver_->eventLog() : std::vector<core::LineEventRecord>{};
+}
 
 std::string LockstepDriver::point(double x, double y, double z) const {
   return threeD() ? "(" + formatNumber(x) + ", " + formatNumber(y) + ", " + formatNumber(z) + ")"
@@ -305,7 +324,8 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double y, do
   r.report = solver_->advanceTo(tn);
   if (!r.report.ok) {
     const core::StepReport rep = r.report;
-    if (++failures_ >= options_.failures_to_reinit) {
+    // A line let go or parted is not rebuilt from statics (statics would heal it).
+    if (++failures_ >= options_.failures_to_reinit && solver_->eventLog().empty()) {
       const int n = failures_;
       r = start(t, x, y, z, Outcome::RecoveredFailure,
                 "dynamic solver failed (" + std::to_string(n) + " samples in a row): " + rep.message);

@@ -123,6 +123,7 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
   reset_srv_ = pnh_.advertiseService("reset", &LockstepNode::onReset, this);
   solve_srv_ = pnh_.advertiseService("solve_static", &LockstepNode::onSolveStatic, this);
+  release_srv_ = pnh_.advertiseService("release", &LockstepNode::onRelease, this);
   std::string input;
   if (motion_source_ == "pose") {
     motion_sub_ = pnh_.subscribe("top_pose", 100, &LockstepNode::onPose, this);
@@ -304,6 +305,7 @@ void LockstepNode::handle(const LockstepDriver::Result& r, const ros::Time& stam
 void LockstepNode::publish(const ros::Time& stamp) {
   const core::StaticResult& s = driver_->state();
   last_state_ = toCableState(s, problem_.name, frame_id_, stamp);
+  for (const core::LineEventRecord& e : driver_->events()) last_state_.events.push_back(core::lineEventText(e));
   state_pub_.publish(last_state_);
 
   // Force of the line on the vessel at the fairlead: minus the force the vessel applies to the line.
@@ -391,6 +393,16 @@ void LockstepNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   st.hardware_id = problem_.name;
   st.message = s.message;
   std::vector<std::pair<std::string, std::string>> values(s.values.begin(), s.values.end());
+  // Line events (an end let go, the line parted): counted, the last one shown, and a warning.
+  const std::vector<core::LineEventRecord> events = driver_->events();
+  values.emplace_back("line events", std::to_string(events.size()));
+  if (!events.empty()) {
+    values.emplace_back("last line event", core::lineEventText(events.back()));
+    if (st.level < diagnostic_msgs::DiagnosticStatus::WARN) {
+      st.level = diagnostic_msgs::DiagnosticStatus::WARN;
+      st.message = "line event: " + core::lineEventText(events.back());
+    }
+  }
   if (gnss_)
     for (const auto& kv : gnss_->values()) values.push_back(kv);
   for (const auto& kv : values) {
@@ -401,6 +413,28 @@ void LockstepNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   }
   arr.status.push_back(st);
   diag_pub_.publish(arr);
+}
+
+bool LockstepNode::onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res) {
+  res.success = false;
+  core::LineEvent::End end = core::LineEvent::End::Top;
+  if (!req.line.empty() && req.line != problem_.name) {
+    res.message = "line = " + req.line + ": this node runs one line, " + problem_.name + " (or leave line empty)";
+    return true;
+  }
+  if (req.end == "anchor")
+    end = core::LineEvent::End::Anchor;
+  else if (req.end != "top") {
+    res.message = "end = \"" + req.end + "\": must be top or anchor";
+    return true;
+  }
+  const std::string err = driver_->release(end, "released by ~release");
+  res.success = err.empty();
+  res.message = err.empty() ? req.end + " let go at solver time " + std::to_string(driver_->solverTime()) +
+                                  " s; it carries no force from the next sample on"
+                            : err;
+  if (res.success) ROS_WARN("mooring_dynamics: ~release: %s", res.message.c_str());
+  return true;
 }
 
 bool LockstepNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {

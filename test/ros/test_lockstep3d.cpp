@@ -27,6 +27,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "lockstep_listener.hpp"
+#include "mooring_dynamics/ReleaseLine.h"
 #include "mooring_dynamics/SolveStatic.h"
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/solvers/solvers.hpp"
@@ -211,6 +212,63 @@ TEST(Lockstep3D, TfSourceCarriesY) {
   const CableState& s = l.states.begin()->second;
   EXPECT_NEAR(s.positions.back().y, top.y - 0.3, kHeldAt);
   EXPECT_NEAR(s.positions.back().x, top.x, kHeldAt);
+}
+
+// ~release (line events): after the sway test, /sway3d's anchor is let go; from the next sample
+// on the line pulls its anchor with nothing and the event is on the state. Bad requests (an end
+// other than top or anchor, another line's name, the same end again, a 2-D line) are refused with
+// the field named.
+TEST(Lockstep3D, ReleaseServiceLetsTheAnchorGo) {
+  const Top top = staticTop();
+  ros::NodeHandle nh;
+  Listener l("/sway3d");
+  ros::Publisher pub = nh.advertise<geometry_msgs::PoseStamped>("/sway3d/top_pose", 100);
+  ASSERT_TRUE(waitForConnection(pub, l)) << "no connection to /sway3d";
+  const ros::Time t1 = kT0 + ros::Duration(10.0), t2 = t1 + ros::Duration(0.1);
+  pub.publish(pose(t1, top.x, top.y, top.z));
+  ASSERT_TRUE(l.waitFor(t1, 10.0));
+  const geometry_msgs::Vector3 held = l.states[t1.toNSec()].anchor_force;
+  const double held_norm = std::sqrt(held.x * held.x + held.y * held.y + held.z * held.z);
+  ASSERT_GT(held_norm, 100.0);
+  EXPECT_TRUE(l.states[t1.toNSec()].events.empty());
+
+  ros::ServiceClient cl = nh.serviceClient<mooring_dynamics::ReleaseLine>("/sway3d/release");
+  ASSERT_TRUE(cl.waitForExistence(ros::Duration(5.0)));
+  mooring_dynamics::ReleaseLine bad;
+  bad.request.end = "bottom";
+  ASSERT_TRUE(cl.call(bad));
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("end = \"bottom\": must be top or anchor"), std::string::npos) << bad.response.message;
+  bad.request.end = "anchor";
+  bad.request.line = "other";
+  ASSERT_TRUE(cl.call(bad));
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("line = other"), std::string::npos) << bad.response.message;
+
+  mooring_dynamics::ReleaseLine rel;
+  rel.request.end = "anchor";
+  ASSERT_TRUE(cl.call(rel));
+  ASSERT_TRUE(rel.response.success) << rel.response.message;
+  ASSERT_TRUE(cl.call(rel));
+  EXPECT_FALSE(rel.response.success);
+  EXPECT_NE(rel.response.message.find("free already"), std::string::npos) << rel.response.message;
+
+  pub.publish(pose(t2, top.x, top.y, top.z));
+  ASSERT_TRUE(l.waitFor(t2, 10.0));
+  const CableState& s = l.states[t2.toNSec()];
+  EXPECT_TRUE(s.converged);
+  const geometry_msgs::Vector3& f = s.anchor_force;
+  EXPECT_LT(std::sqrt(f.x * f.x + f.y * f.y + f.z * f.z), 1e-3 * held_norm) << "the let-go anchor still pulled";
+  ASSERT_EQ(s.events.size(), 1u);
+  EXPECT_NE(s.events[0].find("released anchor"), std::string::npos) << s.events[0];
+
+  ros::ServiceClient cl2 = nh.serviceClient<mooring_dynamics::ReleaseLine>("/planar2d/release");
+  ASSERT_TRUE(cl2.waitForExistence(ros::Duration(5.0)));
+  mooring_dynamics::ReleaseLine r2;
+  r2.request.end = "top";
+  ASSERT_TRUE(cl2.call(r2));
+  EXPECT_FALSE(r2.response.success);
+  EXPECT_NE(r2.response.message.find("need model: 3d"), std::string::npos) << r2.response.message;
 }
 
 TEST(Lockstep2D, OutOfPlanePoseDroppedAndNamed) {

@@ -69,6 +69,14 @@ class LockstepSolver {
   /// Current per-node values and end forces.
   virtual core::StaticResult snapshot() const = 0;
   virtual double time() const = 0;
+  /// Let go an end now (line events, core::DynamicSolver3D::releaseEnd): empty when done, else
+  /// why not (2-D: "model = 2d: line events need model: 3d").
+  virtual std::string releaseEnd(core::LineEvent::End end, const std::string& cause) {
+    (void)end, (void)cause;
+    return "model = 2d: line events need model: 3d";
+  }
+  /// The line events so far (its problem's dynamics.events and releaseEnd calls).
+  virtual std::vector<core::LineEventRecord> eventLog() const { return {}; }
 };
 
 /// Builds a solver started from the statics of `problem` (its top boundary as given). Throws
@@ -174,6 +182,13 @@ class LockstepDriver {
   const core::StaticResult& state() const { return state_; }
   /// The problem the solver runs (the file's, with the samples as top motion and dt applied).
   const core::Problem& problem() const { return problem_; }
+  /// Let go an end of the line now (issue 21): from the next sample's step on it is a free end
+  /// that carries no force. Empty when done, else why not (no solver yet, 2-D, let go already).
+  /// After a line event a failing solver is not rebuilt from statics (statics would heal the
+  /// line): its samples stay Failed with the last good state; reset() starts it intact.
+  std::string release(core::LineEvent::End end, const std::string& cause);
+  /// The line events of the current solver (empty after a re-initialisation).
+  std::vector<core::LineEventRecord> events() const;
 
  private:
   Result start(double t, double x, double y, double z, Outcome outcome, const std::string& why);

@@ -14,7 +14,8 @@
 //   ~tension_range     [min, max] N colour range of the markers (default: each state's own)
 //   ~publish_body_frames, ~instrument_s, ~body_frame_prefix      tf frames on the line
 // Publications: ~cable_state, ~top_wrench, ~markers (only when subscribed), /diagnostics, /tf
-// (body frames, optional). Services: ~reset (std_srvs/Trigger), ~solve_static (SolveStatic).
+// (body frames, optional). Services: ~reset (std_srvs/Trigger), ~solve_static (SolveStatic),
+// ~release (ReleaseLine, model: 3d).
 #pragma once
 
 #include <memory>
@@ -26,6 +27,8 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
+
+#include "mooring_dynamics/ReleaseLine.h"
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
@@ -55,6 +58,8 @@ class LockstepNode {
 
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSolveStatic(SolveStatic::Request& req, SolveStatic::Response& res);
+  /// ~release: let go an end of the line (ReleaseLine; `line` empty or the problem's name).
+  bool onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res);
 
   const LockstepDriver& driver() const { return *driver_; }
   const core::Problem& problem() const { return problem_; }
@@ -87,7 +92,7 @@ class LockstepNode {
   std::unique_ptr<GnssInput> gnss_;  ///< ~motion_source gnss
   ros::Publisher state_pub_, marker_pub_, wrench_pub_, diag_pub_;
   ros::Subscriber motion_sub_;
-  ros::ServiceServer reset_srv_, solve_srv_;
+  ros::ServiceServer reset_srv_, solve_srv_, release_srv_;
   ros::WallTimer tf_timer_, diag_timer_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
