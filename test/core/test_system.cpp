@@ -61,7 +61,8 @@ TEST(System, SymmetricThreeLegMooringHasEqualLegsAndNoOffset) {
   // The buoy carries the three legs' vertical pulls by its draft.
   double Fz = 0.0;
   for (const auto& l : r.lines) Fz += l.top_force_z;
-  const SurfaceBuoy& b = threeLeg(0.0).points[0].buoy;
+  const SystemProblem sys = threeLeg(0.0);  // (a reference into a temporary would dangle: ASan)
+  const SurfaceBuoy& b = sys.points[0].buoy;
   const double draft = r.points[0].buoy_draft;
   EXPECT_NEAR(1025.0 * 9.81 * b.submergedVolume(draft) - b.mass * 9.81, Fz, kBalanceRelTol * T0);
   EXPECT_GT(draft, 0.0);
