@@ -58,6 +58,8 @@ SystemDynamicNode::SystemDynamicNode(const ros::NodeHandle& nh, const ros::NodeH
                                   "must be > 0 [s]");
   mo.min_real_time_factor = doubleParam(pnh_, "min_real_time_factor", mo.min_real_time_factor,
                                         [](double v) { return v >= 0.0; }, "must be >= 0");
+  mo.max_utilization = doubleParam(pnh_, "max_utilization", mo.max_utilization, [](double v) { return v > 0.0; },
+                                   "must be > 0 (tension over minimum breaking load)");
   const double diag_period = doubleParam(pnh_, "diagnostics_period", 1.0, [](double v) { return v > 0.0; },
                                          "must be > 0 [s]");
   const double marker_scale = doubleParam(pnh_, "marker_scale", 1.0, [](double v) { return v > 0.0; }, "must be > 0");
@@ -208,9 +210,15 @@ void SystemDynamicNode::handle(const core::VesselLockstep::Result& r, const ros:
                                double advanced) {
   using O = core::VesselLockstep::Outcome;
   std::vector<double> top;
+  std::vector<core::TensionPeak> peaks;
   if (r.publish)
-    for (std::size_t i = 0; i < system_.lines.size(); ++i) top.push_back(sim_->line(i).topTension());
-  monitor_->onResult(r, wallNow(), wall_spent, advanced, r.publish ? &top : nullptr, sim_->time());
+    for (std::size_t i = 0; i < system_.lines.size(); ++i) {
+      const core::StaticResult line = sim_->line(i);
+      top.push_back(line.topTension());
+      peaks.push_back(core::tensionPeak(system_.materials, system_.lines[i].segments, line.nodes));
+    }
+  monitor_->onResult(r, wallNow(), wall_spent, advanced, r.publish ? &top : nullptr, sim_->time(),
+                     r.publish ? &peaks : nullptr);
   switch (r.outcome) {
     case O::Dropped:
       ROS_ERROR_THROTTLE(kWarnPeriod, "mooring_dynamics: stamp %.6f: %s; last state kept", stamp.toSec(),

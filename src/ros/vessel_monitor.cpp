@@ -24,6 +24,9 @@ VesselMonitor::VesselMonitor(std::vector<std::string> line_names, const VesselMo
       line_last_failure_(names_.size()),
       top_tension_(names_.size(), 0.0),
       max_top_tension_(names_.size(), 0.0),
+      max_tension_(names_.size(), 0.0),
+      utilization_(names_.size(), -1.0),
+      peak_utilization_(names_.size(), -1.0),
       last_motion_wall_(wall_now) {
   namespace k = vessel_keys;
   tally_ = EventTally({k::kNonFinitePosition, k::kNonFiniteOrientation, k::kNonUnitOrientation, k::kBadTwist,
@@ -79,7 +82,8 @@ void VesselMonitor::onRequestRejected(double, const std::string& message) {
 }
 
 void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, double wall_spent, double advanced,
-                             const std::vector<double>* top_tension, double solver_time) {
+                             const std::vector<double>* top_tension, double solver_time,
+                             const std::vector<core::TensionPeak>* peaks) {
   using O = core::VesselLockstep::Outcome;
   using R = core::VesselLockstep::Reason;
   namespace k = vessel_keys;
@@ -159,7 +163,25 @@ void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, doub
       for (std::size_t i = 0; i < names_.size(); ++i) max_top_tension_[i] = std::max(max_top_tension_[i], top_tension_[i]);
       have_state_ = true;
     }
+    if (peaks && peaks->size() == names_.size()) {
+      for (std::size_t i = 0; i < names_.size(); ++i) {
+        const core::TensionPeak& p = (*peaks)[i];
+        max_tension_[i] = p.max_tension;
+        utilization_[i] = !p.empty && p.has_mbl ? p.utilization : -1.0;
+        peak_utilization_[i] = std::max(peak_utilization_[i], utilization_[i]);
+      }
+      have_peaks_ = true;
+    }
   }
+}
+
+bool VesselMonitor::overUtilized(std::size_t i) const {
+  return have_peaks_ && utilization_[i] > options_.max_utilization;
+}
+
+std::string VesselMonitor::utilizationText(std::size_t i) const {
+  return "utilization " + fmt(utilization_[i], "%.3f") + " > " + fmt(options_.max_utilization, "%g") +
+         " (max tension " + fmt(max_tension_[i], "%.1f") + " N)";
 }
 
 std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
@@ -183,6 +205,8 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
   const double rtf = w.wall > 0.0 ? w.sim / w.wall : 0.0;
   if (w.sim > 0.0 && rtf < options_.min_real_time_factor)
     warnings.push_back("real-time factor " + fmt(rtf, "%.2f") + " < " + fmt(options_.min_real_time_factor, "%g"));
+  for (std::size_t i = 0; i < names_.size(); ++i)
+    if (overUtilized(i)) warnings.push_back("line " + names_[i] + " " + utilizationText(i));
   std::string msg;
   for (const auto* v : {&errors, &warnings})
     for (const auto& x : *v) msg += (msg.empty() ? "" : "; ") + x;
@@ -211,11 +235,16 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
     Status l;
     l.line = names_[i];
     const bool failed = line_failures_window_[i] > 0;
-    l.level = failed ? ERROR : OK;
+    const bool over = overUtilized(i);
+    l.level = failed ? ERROR : over ? WARN : OK;
     l.message = failed ? "failed: " + line_last_failure_[i]
                        : have_state_ ? "top tension " + fmt(top_tension_[i], "%.1f") + " N" : "waiting for motion";
+    if (!failed && over) l.message += "; " + utilizationText(i);
     kv(l, "top tension [N]", have_state_ ? fmt(top_tension_[i], "%.6g") : "-");
     kv(l, "max top tension [N]", have_state_ ? fmt(max_top_tension_[i], "%.6g") : "-");
+    kv(l, "max tension [N]", have_peaks_ ? fmt(max_tension_[i], "%.6g") : "-");
+    kv(l, "utilization (T / MBL)", have_peaks_ && utilization_[i] >= 0.0 ? fmt(utilization_[i], "%.4g") : "-");
+    kv(l, "utilization (max, total)", peak_utilization_[i] >= 0.0 ? fmt(peak_utilization_[i], "%.4g") : "-");
     kv(l, "converged", failed ? "false" : "true");
     kv(l, "failures (window / total)",
        std::to_string(line_failures_window_[i]) + " / " + std::to_string(line_failures_total_[i]));

@@ -294,8 +294,7 @@ TEST(Statics2D, SeabedFrictionDropsTheTensionByMuWTimesTheGroundedLength) {
   // touchdown to the anchor by mu_axial w L_g (closed form). The suspended length follows from
   // the top's vertical force, V = w L_s (no vertical load at the touchdown), the horizontal
   // tension at the touchdown is the top's horizontal force H, so T_anchor = H - mu w (L - V / w).
-  // mu = 0.05: the pull reaches the anchor. Where friction exhausts it along the grounded length
-  // (mu = 0.3 here) the solve does not converge (docs/method.md, "Seabed friction").
+  // mu = 0.05: the pull reaches the anchor (a larger mu uses it up before: the next test).
   const double mu = 0.05, L = 200.0;
   Problem p = grounded(0.25);
   p.materials[0].mu_axial = mu;
@@ -312,4 +311,39 @@ TEST(Statics2D, SeabedFrictionDropsTheTensionByMuWTimesTheGroundedLength) {
   // The frictionless line carries H to the anchor: the friction moved it by far more than the tolerance.
   const StaticResult r0 = solveStatic(grounded(0.25));
   EXPECT_GT(r0.nodes.front().tension - r.nodes.front().tension, 10.0 * kCatenaryRelTol * r.topTension());
+}
+
+TEST(Statics2D, SeabedFrictionThatUsesUpThePullLeavesTheRestOfTheLineSlack) {
+  // mu = 0.3 on the same line: the pull H at the touchdown is used up H / (mu w) = 29.7 m toward
+  // the anchor. Closed form: T = H - mu w d at the distance d from the touchdown for
+  // d < H / (mu w); beyond, the rest of the grounded line lies slack. The friction is mobilized
+  // over T_f = mu w * 1 m (equations2d.hpp, staticFriction), so there the tension stays in
+  // [0, T_f) and the anchor carries almost nothing. Both laws: a line without compression is
+  // solved from the solution with it (docs/method.md, "Seabed friction"); they agree to within
+  // the slack ramp's lift (EA kSlackStrain / 8 = 1.25 N).
+  const double mu = 0.3, L = 200.0;
+  const double Tf = mu * kW * 1.0;
+  for (bool compression : {true, false}) {
+    Problem p = grounded(0.25);
+    p.materials[0].mu_axial = mu;
+    p.materials[0].compression = compression;
+    const StaticResult r = solveStatic(p);
+    ASSERT_TRUE(r.summary.converged) << "compression " << compression << ": " << r.summary.message;
+    const double H = r.top_force_x, V = r.top_force_z;
+    const double s_td = L - V / kW, d_used = H / (mu * kW);
+    ASSERT_GT(s_td - d_used, 50.0);  // the slack stretch is long
+    double worst = 0.0;
+    for (const NodeState& n : r.nodes) {
+      const double d = s_td - n.s;
+      if (d > 2.0 && d < d_used - 2.0) worst = std::max(worst, std::abs(n.tension - (H - mu * kW * d)));
+      if (d > d_used + 2.0) {
+        EXPECT_GE(n.tension, compression ? -1e-9 * H : 0.0) << "s = " << n.s;
+        EXPECT_LT(n.tension, Tf) << "s = " << n.s;
+      }
+    }
+    std::printf("friction mu = %.1f, compression %d: linear drop off by %.2f N at most; anchor %.2f N (H %.1f N)\n", mu,
+                compression, worst, r.nodes.front().tension, H);
+    EXPECT_LT(worst, kCatenaryRelTol * r.topTension());
+    EXPECT_LT(r.nodes.front().tension, 0.01 * H);
+  }
 }

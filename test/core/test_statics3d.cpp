@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "mooring_dynamics/core/equations/catenary.hpp"
@@ -314,4 +315,62 @@ TEST(Statics3D, ShippedCrossCurrentMooringLiesInTheCurrentsPlane) {
     EXPECT_NEAR(r.nodes[j].y, std::sin(a) * r2.nodes[j].x, kRotationPosTol);
     EXPECT_NEAR(r.nodes[j].tension, r2.nodes[j].tension, kRotationRelTol * r2.topTension());
   }
+}
+
+namespace {
+
+/// 200 m of wire from an anchor on the bottom at 100 m to the surface 120 m away along azimuth
+/// psi [rad] from +x, no current: about 90 m lie on the bottom (test_statics2d's grounded line,
+/// turned out of the x-z plane so that every 3-D row takes part).
+Problem groundedWire(double psi, double spacing) {
+  Problem p = suspended(spacing);
+  p.environment.depth = 100.0;
+  p.environment.seabed.stiffness = 1.0e7;
+  p.segments[0].length = 200.0;
+  p.anchor_x = 5.0;
+  p.anchor_y = -3.0;
+  p.anchor_z = -100.0;
+  p.top.x = p.anchor_x + 120.0 * std::cos(psi);
+  p.top.y = p.anchor_y + 120.0 * std::sin(psi);
+  p.top.z = 0.0;
+  return p;
+}
+
+}  // namespace
+
+TEST(Statics3D, SeabedFrictionDropsTheTensionByMuWTimesTheGroundedLength) {
+  // As in 2-D (test_statics2d): static friction opposes the top's pull along the grounded
+  // stretch, so the tension falls from the touchdown to the anchor by mu_axial w L_g. With no
+  // current the top's horizontal force H is the touchdown tension and its vertical force V
+  // carries the suspended length V / w: T_anchor = H - mu w (L - V / w) (closed form).
+  const double mu = 0.05, L = 200.0, w = 100.0, psi = 0.7;
+  Problem p = groundedWire(psi, 0.5);
+  p.materials[0].mu_axial = mu;
+  const StaticResult r = solveStatic3D(p);
+  ASSERT_TRUE(r.summary.converged) << r.summary.message;
+  const double H = std::hypot(r.top_force_x, r.top_force_y), V = r.top_force_z;
+  const double Lg = L - V / w;
+  ASSERT_GT(Lg, 50.0);
+  const double expected = H - mu * w * Lg;
+  ASSERT_GT(expected, 0.2 * H);  // the pull reaches the anchor: the closed form applies
+  std::printf("3-D friction: anchor tension %.2f N, closed form %.2f N (H %.1f N, L_g %.2f m)\n",
+              r.nodes.front().tension, expected, H, Lg);
+  EXPECT_NEAR(r.nodes.front().tension, expected, kCatenaryRelTol * r.topTension());
+  // The friction acts along the line: the anchor is pulled toward the top, in the line's plane.
+  EXPECT_NEAR(std::atan2(r.anchor_force_y, r.anchor_force_x), psi, 1e-6);
+  // Frictionless, the anchor carries H: the friction moved it by far more than the tolerance.
+  const StaticResult r0 = solveStatic3D(groundedWire(psi, 0.5));
+  ASSERT_TRUE(r0.summary.converged) << r0.summary.message;
+  EXPECT_GT(r0.nodes.front().tension - r.nodes.front().tension, 10.0 * kCatenaryRelTol * r.topTension());
+}
+
+TEST(Statics3D, PlanarGroundedLineWithFrictionMatches2D) {
+  // The 3-D static friction is the 2-D law on the same rows: in the x-z plane the two solvers
+  // agree to the Newton tolerance, node by node.
+  Problem p = groundedWire(0.0, 1.0);
+  p.anchor_x = p.anchor_y = 0.0;
+  p.top.x = 120.0;
+  p.top.y = 0.0;
+  p.materials[0].mu_axial = 0.05;
+  expectPlanarAgreement(p);
 }

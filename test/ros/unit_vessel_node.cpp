@@ -1,5 +1,6 @@
 // Unit tests without a master for the moored-vessel node's pieces: the converter (poses, wrenches,
-// VesselStatics requests and responses) and VesselMonitor (counts, levels, the failed line named).
+// VesselStatics requests and responses) and VesselMonitor (counts, levels, the failed line named,
+// utilization).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/model/utilization.hpp"
 #include "mooring_dynamics/core/solvers/vessel_statics.hpp"
 #include "mooring_dynamics/ros/converter.hpp"
 #include "mooring_dynamics/ros/vessel_monitor.hpp"
@@ -192,6 +194,70 @@ TEST(VesselMonitor, CountsDropsAndNamesTheFailedLine) {
   EXPECT_EQ(s[3].level, rb::VesselMonitor::OK);
   EXPECT_EQ(valueOf(s[3], "failures (window / total)"), "0 / 1");
   EXPECT_EQ(valueOf(s[0], "samples dropped"), "1");
+}
+
+// Utilization as the line node's monitor: the largest T / MBL over each line's nodes whose
+// material has an MBL, WARN above max_utilization for that line and, naming it, for the run.
+// Hand sums: line a has 700 N in chain (MBL 1000 N) and 900 N in rope (no MBL): utilization 0.7
+// (not at the largest tension); line b 500 N in chain: 0.5; line c only rope: none.
+TEST(VesselMonitor, UtilizationAboveTheLimitWarnsAndNamesTheLine) {
+  std::vector<core::Material> mats(2);
+  mats[0].name = "chain";
+  mats[0].mbl = 1000.0;
+  mats[1].name = "rope";
+  std::vector<core::Segment> segs(2);
+  segs[0].material = 0;
+  segs[1].material = 1;
+  auto node = [](int seg, double T) {
+    core::NodeState n;
+    n.segment = seg;
+    n.tension = T;
+    return n;
+  };
+  const std::vector<core::TensionPeak> peaks{
+      core::tensionPeak(mats, segs, {node(0, 600.0), node(0, 700.0), node(1, 900.0)}),
+      core::tensionPeak(mats, segs, {node(0, 500.0), node(1, 400.0)}),
+      core::tensionPeak(mats, {segs[1]}, {node(0, 2000.0)})};
+  rb::VesselMonitorOptions o;
+  o.motion_timeout = 100.0;
+  o.max_utilization = 0.6;
+  rb::VesselMonitor m({"a", "b", "c"}, o, 0.0);
+  core::VesselLockstep::Result adv;
+  adv.outcome = core::VesselLockstep::Outcome::Advanced;
+  adv.publish = true;
+  const std::vector<double> top{900.0, 500.0, 2000.0};
+  m.onMotionReceived(0.1);
+  m.onResult(adv, 0.1, 0.01, 0.1, &top, 0.1, &peaks);
+  std::vector<rb::VesselMonitor::Status> s = m.summarise(0.2);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_EQ(s[0].level, rb::VesselMonitor::WARN);
+  EXPECT_NE(s[0].message.find("line a utilization 0.700 > 0.6 (max tension 900.0 N)"), std::string::npos)
+      << s[0].message;
+  EXPECT_EQ(s[0].message.find("line b"), std::string::npos) << s[0].message;
+  EXPECT_EQ(s[1].level, rb::VesselMonitor::WARN);
+  EXPECT_NE(s[1].message.find("utilization 0.700 > 0.6"), std::string::npos) << s[1].message;
+  EXPECT_EQ(valueOf(s[1], "utilization (T / MBL)"), "0.7");
+  EXPECT_EQ(valueOf(s[1], "max tension [N]"), "900");
+  EXPECT_EQ(s[2].level, rb::VesselMonitor::OK);
+  EXPECT_EQ(valueOf(s[2], "utilization (T / MBL)"), "0.5");
+  EXPECT_EQ(s[3].level, rb::VesselMonitor::OK);  // no MBL: no utilization, never a warning
+  EXPECT_EQ(valueOf(s[3], "utilization (T / MBL)"), "-");
+  EXPECT_EQ(valueOf(s[3], "utilization (max, total)"), "-");
+  // Line a eases to 550 N in chain: OK again, the run's largest utilization remembered.
+  const std::vector<core::TensionPeak> eased{core::tensionPeak(mats, segs, {node(0, 550.0), node(1, 300.0)}),
+                                             peaks[1], peaks[2]};
+  m.onMotionReceived(0.3);
+  m.onResult(adv, 0.3, 0.01, 0.1, &top, 0.2, &eased);
+  s = m.summarise(0.4);
+  EXPECT_EQ(s[0].level, rb::VesselMonitor::OK) << s[0].message;
+  EXPECT_EQ(s[1].level, rb::VesselMonitor::OK) << s[1].message;
+  EXPECT_EQ(valueOf(s[1], "utilization (T / MBL)"), "0.55");
+  EXPECT_EQ(valueOf(s[1], "utilization (max, total)"), "0.7");
+  // Exactly at the limit is not above it (the line node's rule, T / MBL > max_utilization).
+  const std::vector<core::TensionPeak> at{core::tensionPeak(mats, segs, {node(0, 600.0)}), peaks[1], peaks[2]};
+  m.onResult(adv, 0.5, 0.01, 0.1, &top, 0.3, &at);
+  s = m.summarise(0.6);
+  EXPECT_EQ(s[1].level, rb::VesselMonitor::OK) << s[1].message;
 }
 
 // demo_monitor reads the real-time factor from the run status of any of the three dynamic nodes

@@ -10,17 +10,21 @@
 //                   at that sample's pose
 //            WARN   no motion for more than motion_timeout; samples dropped (bad pose, NaN or
 //                   non-unit quaternion, stamp not increasing, jump, no transform); restarted
-//                   (bag loop, gap, reset); real-time factor below min_real_time_factor
+//                   (bag loop, gap, reset); real-time factor below min_real_time_factor; a line's
+//                   utilization (largest tension over its material's minimum breaking load,
+//                   Material::mbl) in the last published state above max_utilization (named)
 //            OK     otherwise
 //   per line ERROR  this line failed in the window (Result::failed_lines, or named in
-//                   VesselLockstep's message as "line <name>:"), else OK; values: top tension,
-//                   converged, failures.
+//                   VesselLockstep's message as "line <name>:"); WARN its utilization is above
+//                   max_utilization; else OK; values: top tension, max tension, utilization (now
+//                   and the largest so far), converged, failures.
 #pragma once
 
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "mooring_dynamics/core/model/utilization.hpp"
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
 #include "mooring_dynamics/ros/event_tally.hpp"
 
@@ -30,6 +34,10 @@ namespace ros_bridge {
 struct VesselMonitorOptions {
   double motion_timeout = 1.0;        ///< [s, wall] no motion for longer than this: WARN
   double min_real_time_factor = 1.0;  ///< window real-time factor below this: WARN
+  /// A line's utilization (T / MBL) in the published state above this: WARN (as the line node's
+  /// LockstepMonitor). The default is the inverse of the intact safety factor 1.67 that mooring
+  /// design codes ask of a dynamic analysis.
+  double max_utilization = 0.6;
 };
 
 /// Keys of the counts in the overall status's values, each "<key> (window / total)".
@@ -79,9 +87,11 @@ class VesselMonitor {
   const EventTally& tally() const { return tally_; }
   /// A VesselLockstep result. `wall_spent` [s] the wall time of the call, `advanced` [s] the solver
   /// time it covered (Advanced), `top_tension` the lines' top tensions [N] when r.publish, and
-  /// `solver_time` [s] the solver's time after the call.
+  /// `solver_time` [s] the solver's time after the call. `peaks`, when given with r.publish, holds
+  /// each line's largest tension and utilization in the published state (core::tensionPeak).
   void onResult(const core::VesselLockstep::Result& r, double wall_now, double wall_spent, double advanced,
-                const std::vector<double>* top_tension, double solver_time);
+                const std::vector<double>* top_tension, double solver_time,
+                const std::vector<core::TensionPeak>* peaks = nullptr);
 
   /// Overall status then one per line, for the window since the last call; starts a new window.
   std::vector<Status> summarise(double wall_now);
@@ -102,6 +112,10 @@ class VesselMonitor {
     double sim = 0.0, wall = 0.0;  ///< solver time advanced, wall time spent [s]
   };
   static void add(Counts& a, const Counts& b);
+  /// Line i's utilization in the last published state is above options_.max_utilization.
+  bool overUtilized(std::size_t i) const;
+  /// "utilization 0.700 > 0.6 (max tension 900.0 N)" for line i.
+  std::string utilizationText(std::size_t i) const;
 
   std::vector<std::string> names_;
   VesselMonitorOptions options_;
@@ -114,6 +128,10 @@ class VesselMonitor {
   std::vector<std::string> line_last_failure_;
   std::vector<double> top_tension_, max_top_tension_;
   bool have_state_ = false;
+  bool have_peaks_ = false;           ///< max_tension_ and utilization_ hold a published state
+  std::vector<double> max_tension_;   ///< largest tension along each line in that state [N]
+  std::vector<double> utilization_;   ///< its utilization (< 0: no MBL given) [-]
+  std::vector<double> peak_utilization_;  ///< largest utilization so far (< 0: none) [-]
   double last_motion_wall_ = 0.0;
   bool ever_received_ = false;
   std::string last_event_, last_drop_, last_restart_, last_failure_;

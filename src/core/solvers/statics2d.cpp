@@ -197,10 +197,37 @@ StaticResult solveStaticOnMesh(const Problem& problem, const Mesh& mesh, const S
   Eigen::VectorXd Y = options.initial_guess == StaticOptions::InitialGuess::StraightLine
                           ? straightLineState(problem, mesh)
                           : stateFromShot(mesh, shot);
+  // Stage 0 (static friction on a line without compression): first with the law through zero,
+  // whose tension keeps its slope at and below zero strain. Where the friction uses up the pull
+  // the grounded line is slack; an iterate with negative strain there sees neither a friction
+  // nor a tension slope (the slack ramp and the friction step are both flat below zero), and
+  // Newton on the no-compression law from the catenary guess cycled (docs/method.md, "Seabed
+  // friction"). Stage 1 then starts from that solution, which differs only where the tension is
+  // within the slack ramp.
+  int stage0 = 0;
+  Problem eased = problem;
+  bool ease = false;
+  for (Material& m : eased.materials)
+    if (m.mu_axial > 0.0 && !m.compression) ease = m.compression = true;
+  if (ease) {
+    StaticSystem2D pre(eased, mesh);
+    pre.setSeabedCap(false);
+    Eigen::VectorXd Y0 = Y;
+    const SolverSummary s0 = solveNewton(pre, Y0, newtonOptions(options));
+    if (s0.converged) {
+      Y = Y0;
+      stage0 = s0.iterations;
+    }
+  }
   StaticSystem2D system(problem, mesh);
   // Stage 1: the seabed as a plain spring: smooth equations, Newton converges quadratically.
   system.setSeabedCap(false);
   SolverSummary summary = solveNewton(system, Y, newtonOptions(options));
+  if (stage0 > 0) {
+    summary.iterations += stage0;
+    summary.message += "; started from the solution with compression (static friction on a line without it), " +
+                       std::to_string(summary.iterations) + " iterations in all";
+  }
   // Stage 2 (seabed.static_cap): the paper's capped foundation, started from the smooth solution,
   // when some stretch of line carries more than its wet weight. The cap's value enters the
   // residual; its Jacobian keeps the spring's slope (a capped stretch has none, and the box

@@ -103,6 +103,7 @@ void StaticSystem3D::intervalRows(int j, const std::vector<Water>& water, const 
     for (int k = 0; k < 2 * N; ++k) y[k] = AD32(Yv[N * j + k], 2 * N, k);
     if (iv.h > 0.0) {
       intervalSpatial(env, problem_.materials[iv.material], iv.h, y, y + N, wa, wb, r);
+      addStaticSeabedFriction(env, problem_.materials[iv.material], iv.h, y, y + N, r);
     } else {
       junctionForces(problem_, iv, ma, mb, y, y + N, wa, r);
       junctionConstraints(ma, mb, y, y + N, r);
@@ -113,6 +114,7 @@ void StaticSystem3D::intervalRows(int j, const std::vector<Water>& water, const 
     const double* ya = Yv.data() + N * j;
     if (iv.h > 0.0) {
       intervalSpatial(env, problem_.materials[iv.material], iv.h, ya, ya + N, wa, wb, r);
+      addStaticSeabedFriction(env, problem_.materials[iv.material], iv.h, ya, ya + N, r);
     } else {
       junctionForces(problem_, iv, ma, mb, ya, ya + N, wa, r);
       junctionConstraints(ma, mb, ya, ya + N, r);

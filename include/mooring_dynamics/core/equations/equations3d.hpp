@@ -17,6 +17,7 @@
 // and equations2d_dynamic.hpp (the row comments name the 2-D equation).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "mooring_dynamics/core/equations/equations2d.hpp"
@@ -125,6 +126,27 @@ void addSeabedFriction(const Material& m, const S* Yn, const S* R, const S& Fbot
   const S f = m.mu_lateral * Fbot * eq2d::frictionRamp(vl);
   g[1] = g[1] - f * l2;
   g[2] = g[2] - f * l3;
+}
+
+/// Static axial seabed friction at a grounded node along its tangent e1 [N/m]: the 2-D law
+/// (eq2d::staticFriction, docs/method.md "Seabed friction") on the nominal reaction w_o ramped in
+/// over the contact onset. Statics only: the line is taken as laid from the anchor and pulled
+/// from the top, so the friction opposes that pull and the tension falls toward the anchor by
+/// mu_axial w_o per metre of grounded line.
+template <class S>
+S staticSeabedFriction(const Environment& env, const Material& m, const S* Yn) {
+  const S reaction = std::max(m.wet_weight, 0.0) * contactFraction(env, Yn, eq2d::contactOnset(env, m));
+  if (!(value(reaction) > 0.0)) return zeroLike(Yn[EPS]);
+  return eq2d::staticFriction(m, Yn[EPS], reaction);
+}
+
+/// Adds the static axial friction of an interval of length h to its axial force row R[0]
+/// (intervalSpatial's row 0, the trapezoidal mean of the two nodes as the other loads). Nothing
+/// is evaluated with mu_axial = 0.
+template <class S>
+void addStaticSeabedFriction(const Environment& env, const Material& m, double h, const S* Ya, const S* Yb, S* R) {
+  if (!(m.mu_axial > 0.0)) return;
+  R[0] = R[0] + 0.5 * h * (staticSeabedFriction(env, m, Ya) + staticSeabedFriction(env, m, Yb));
 }
 
 /// Distributed load per unit unstretched length at a node, local components g = (g1, g2, g3):
