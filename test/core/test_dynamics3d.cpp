@@ -533,10 +533,14 @@ TEST(Dynamics3D, RopeLetGoAtTheTopUnloadsAtTheElasticWaveSpeed) {
               kArrival);
   EXPECT_NEAR(arrival - kRelease, kArrival - kRelease, kArrivalRelTol * (kArrival - kRelease));
   for (std::size_t k = 0; k < r.t.size(); ++k)
-    if (r.t[k] < kArrival - 0.1 * (kArrival - kRelease)) EXPECT_NEAR(r.anchor_tension[k], T0, kQuietBeforeFront) << r.t[k];
+    if (r.t[k] < kArrival - 0.1 * (kArrival - kRelease)) {
+      EXPECT_NEAR(r.anchor_tension[k], T0, kQuietBeforeFront) << r.t[k];
+    }
   // The top is free from the release on.
   for (std::size_t k = 0; k < r.t.size(); ++k)
-    if (r.t[k] > kRelease + 1e-9) EXPECT_NEAR(r.top_tension[k], 0.0, 1e-6 * T0) << "t = " << r.t[k];
+    if (r.t[k] > kRelease + 1e-9) {
+      EXPECT_NEAR(r.top_tension[k], 0.0, 1e-6 * T0) << "t = " << r.t[k];
+    }
   ASSERT_EQ(r.events.size(), 1u);
   EXPECT_EQ(r.events[0].what, "released top");
   EXPECT_NEAR(r.events[0].t, kRelease, 1e-12);
@@ -594,8 +598,12 @@ TEST(Dynamics3D, ABreakOnTensionHappensAtTheFirstStepOverTheLimitAtTheLargestTen
   EXPECT_NEAR(r.events[0].t, t_first, 1e-9);
   EXPECT_GT(r.events[0].tension, limit);
   for (std::size_t k = 0; k < r.t.size(); ++k) {
-    if (r.t[k] < t_first - 1e-9) EXPECT_EQ(r.top_tension[k], whole.top_tension[k]) << "before the break: the same bits";
-    if (r.t[k] > t_first + 1e-9) EXPECT_NEAR(r.top_tension[k], 0.0, 1e-6 * T0) << "after: a free top";
+    if (r.t[k] < t_first - 1e-9) {
+      EXPECT_EQ(r.top_tension[k], whole.top_tension[k]) << "before the break: the same bits";
+    }
+    if (r.t[k] > t_first + 1e-9) {
+      EXPECT_NEAR(r.top_tension[k], 0.0, 1e-6 * T0) << "after: a free top";
+    }
   }
 }
 
