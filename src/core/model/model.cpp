@@ -571,21 +571,32 @@ std::string validateEvents(const Problem& p) {
     if (p.formulation != Formulation::ThreeD)
       return k + ": line events run in the 3-D solver; set formulation: 3d (a planar problem gives the same results there)";
     if (!ev.line.empty()) return k + ".line = " + ev.line + ": only a system file names the line of an event";
-    if (ev.type == LineEvent::Type::Release && ev.end == LineEvent::End::Anchor && p.lower_end == Problem::LowerEnd::Free)
-      return k + ".end = anchor: the line's lower end is free already (lower_end: free)";
-    if (ev.s > p.totalLength() * (1.0 + 1e-12))
-      return k + ".s = " + std::to_string(ev.s) + ": beyond the top of the line (unstretched length " +
-             std::to_string(p.totalLength()) + " m)";
-    if (ev.at_mbl) {
-      bool any = false;
-      for (const Segment& g : p.segments) any = any || p.materials[g.material].mbl > 0.0;
-      if (!any) return k + ".tension = mbl: no material of the line has an mbl";
-    }
+    const std::string e = validateEventOnLine(ev, k, "the line", p.segments, p.materials,
+                                              p.lower_end == Problem::LowerEnd::Free);
+    if (!e.empty()) return e;
   }
   return {};
 }
 
 }  // namespace
+
+std::string validateEventOnLine(const LineEvent& ev, const std::string& key, const std::string& line,
+                                const std::vector<Segment>& segments, const std::vector<Material>& materials,
+                                bool lower_end_free) {
+  double length = 0.0;
+  bool any_mbl = false;
+  for (const Segment& g : segments) {
+    length += g.length;
+    any_mbl = any_mbl || materials[g.material].mbl > 0.0;
+  }
+  if (ev.s > length * (1.0 + 1e-12))
+    return key + ".s = " + std::to_string(ev.s) + ": beyond the top of " + line + " (unstretched length " +
+           std::to_string(length) + " m)";
+  if (ev.at_mbl && !any_mbl) return key + ".tension = mbl: no material of " + line + " has an mbl";
+  if (ev.type == LineEvent::Type::Release && ev.end == LineEvent::End::Anchor && lower_end_free)
+    return key + ".end = anchor: " + line + "'s lower end is free already";
+  return {};
+}
 
 std::string Problem::validate() const {
   std::string e;

@@ -229,18 +229,9 @@ static std::string validateSystemEvents(const SystemProblem& s) {
     for (const SystemLine& l : s.lines)
       if (l.name == ev.line) line = &l;
     if (!line) return k + ".line = " + ev.line + ": no line of that name in lines";
-    double length = 0.0;
-    bool any_mbl = false;
-    for (const Segment& g : line->segments) {
-      length += g.length;
-      any_mbl = any_mbl || s.materials[g.material].mbl > 0.0;
-    }
-    if (ev.s > length * (1.0 + 1e-12))
-      return k + ".s = " + std::to_string(ev.s) + ": beyond the top of line " + ev.line + " (unstretched length " +
-             std::to_string(length) + " m)";
-    if (ev.at_mbl && !any_mbl) return k + ".tension = mbl: no material of line " + ev.line + " has an mbl";
-    if (ev.type == LineEvent::Type::Release && ev.end == LineEvent::End::Anchor && line->from == SystemLine::kFreeEnd)
-      return k + ".end = anchor: line " + ev.line + "'s lower end is free already";
+    const std::string e = validateEventOnLine(ev, k, "line " + ev.line, line->segments, s.materials,
+                                              line->from == SystemLine::kFreeEnd);
+    if (!e.empty()) return e;
   }
   return {};
 }

@@ -325,5 +325,12 @@ struct Problem {
   std::string validateResources() const;
 };
 
+/// The checks of one line event against its line (dynamics.events[i], `key` its key): `s`
+/// within the line, an `mbl` to break at, an anchor that is not free already. `line` names the
+/// line in messages ("the line", "line leg_e"). Empty when valid.
+std::string validateEventOnLine(const LineEvent& ev, const std::string& key, const std::string& line,
+                                const std::vector<Segment>& segments, const std::vector<Material>& materials,
+                                bool lower_end_free);
+
 }  // namespace core
 }  // namespace mooring_dynamics
