@@ -111,9 +111,12 @@ class ProgressBar {
 
 std::string recordLabel(double s) { return fmtNum("%.6g", s); }
 
-/// 3-D runs add the y columns (top_y, y_s<S>; y in the snapshots).
+/// 3-D runs add the y columns (top_y, y_s<S>; y in the snapshots); a winch the line's length
+/// (line_length, after top_z).
 void writeTimeseriesCsv(std::ostream& f, const core::DynamicSeries& r, bool three_d) {
+  const bool winch = !r.line_length.empty();
   f << (three_d ? "t,top_tension,anchor_tension,top_x,top_y,top_z" : "t,top_tension,anchor_tension,top_x,top_z");
+  if (winch) f << ",line_length";
   for (double s : r.record_s) {
     const std::string l = recordLabel(s);
     f << ",tension_s" << l << ",x_s" << l << (three_d ? ",y_s" + l : std::string()) << ",z_s" << l;
@@ -122,6 +125,7 @@ void writeTimeseriesCsv(std::ostream& f, const core::DynamicSeries& r, bool thre
   for (std::size_t k = 0; k < r.t.size(); ++k) {
     f << csvNum(r.t[k]) << "," << csvNum(r.top_tension[k]) << "," << csvNum(r.anchor_tension[k]) << ","
       << csvNum(r.top_x[k]) << "," << (three_d ? csvNum(r.top_y[k]) + "," : std::string()) << csvNum(r.top_z[k]);
+    if (winch) f << "," << csvNum(r.line_length[k]);
     for (std::size_t i = 0; i < r.record_s.size(); ++i)
       f << "," << csvNum(r.node_tension[i][k]) << "," << csvNum(r.node_x[i][k]) << ","
         << (three_d ? csvNum(r.node_y[i][k]) + "," : std::string()) << csvNum(r.node_z[i][k]);
@@ -200,6 +204,9 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
     << "  \"static_top_tension\": " << jsonNum(g.static_top) << ",\n"
     << "  \"max_tension\": " << peakJson(r.peak) << ",\n"
     << "  \"events\": " << lineEventsJson(r.events) << ",\n";
+  if (!r.line_length.empty())
+    f << "  \"line_length\": {\"start\": " << jsonNum(r.line_length.front()) << ", \"end\": "
+      << jsonNum(r.line_length.back()) << "},\n";
   if (r.initial_static.drifting && g.simulated > 0.0)
     f << "  \"static_drift_velocity\": {\"x\": " << jsonNum(r.initial_static.drift_vx)
       << ", \"y\": " << jsonNum(r.initial_static.drift_vy) << "},\n"
@@ -235,6 +242,9 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
   o << "  static top     " << fmtNum("%.1f", g.static_top) << " N\n";
   o << "  max tension    " << core::tensionPeakText(r.peak, true) << "\n";
   for (const auto& e : r.events) o << "  event          " << core::lineEventText(e) << "\n";
+  if (!r.line_length.empty())
+    o << "  winch          line length " << fmtNum("%.3f", r.line_length.front()) << " m -> "
+      << fmtNum("%.3f", r.line_length.back()) << " m\n";
   if (r.initial_static.drifting && g.simulated > 0.0)
     o << "  drift          static x = " << fmtNum("%.4f", r.initial_static.drift_vx) << ", y = "
       << fmtNum("%.4f", r.initial_static.drift_vy) << " m/s; run mean x = "

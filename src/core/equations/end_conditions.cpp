@@ -320,15 +320,31 @@ class FreeEnd3D : public DynamicForms3D<FreeEnd3D> {
   double S_[3] = {0.0, 0.0, 0.0};  ///< spatial part of the balance at the accepted level [N]
 };
 
-/// The velocity rows of a driven top (eq. 34) from row 0: V - v - kappa (x - y_x).
+/// The velocity rows of a driven top (eq. 34) from row 0: V - v - kappa (x - y_x). With a winch
+/// paying out at dL/dt the line runs through the top, and V is the velocity of the material
+/// there: V - (v - dL/dt m) - kappa (x - y_x), m the top interval's mean (1 + eps) e1 (as the
+/// coordinates row, eq. 42, has it), the node below taken at the previous level (docs/method.md
+/// "Winch").
 template <class S>
-void prescribedVelocity(const TopState& in, double kappa, const S* y, S* r) {
+void prescribedVelocity(const DynamicEnd3D& c, double kappa, const S* y, S* r) {
   using namespace eq3d;
+  const TopState& in = *c.input;
   S V[3];
   globalVelocity(y, V);
   const double v[3] = {in.vx, in.vy, in.vz};
   const double x[3] = {in.x, in.y, in.z};
   for (int i = 0; i < 3; ++i) r[i] = V[i] - v[i] - kappa * (x[i] - y[X + i]);
+  if (c.payout == 0.0) return;
+  S R[9];
+  quat::matrix(y + Q0, R);
+  double Rb[9] = {0.0}, pb = 0.0;
+  if (c.below) {
+    quat::matrix(c.below + Q0, Rb);
+    pb = 1.0 + c.below[EPS];
+  }
+  const double wb = c.below ? 0.5 : 0.0;  // weight of the node below in the mean
+  for (int i = 0; i < 3; ++i)
+    r[i] += c.payout * ((1.0 - wb) * (1.0 + y[EPS]) * R[3 * i] + wb * pb * Rb[3 * i]);
 }
 
 /// The force rows of a top with the force prescribed from row 0: the internal force equals it.
@@ -357,7 +373,8 @@ class DrivenTop3D : public DynamicForms3D<DrivenTop3D> {
       const double f[3] = {in.fx, in.fy, in.fz};
       prescribedForce(m_, f, y, r + 3);
     } else {
-      prescribedVelocity(in, kappa_, y, r + 3);
+      const double kappa = c.winch ? 1.0 / (kPositionFeedbackSteps * p_.dynamics.dt) : kappa_;
+      prescribedVelocity(c, kappa, y, r + 3);
     }
   }
 
@@ -563,7 +580,7 @@ class TowPoint3D : public DynamicForms3D<TowPoint3D> {
       prescribedForce(m_, f, y, r + 3);
     } else {
       constexpr double kNoFeedback = 0.0;  // the position is prescribed by rows 6-8 itself
-      prescribedVelocity(in, kNoFeedback, y, r + 3);
+      prescribedVelocity(c, kNoFeedback, y, r + 3);
     }
     const double x[3] = {in.x, in.y, in.z};
     for (int i = 0; i < 3; ++i) r[6 + i] = y[X + i] - x[i];

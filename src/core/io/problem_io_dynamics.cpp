@@ -386,13 +386,40 @@ void readEvents(const Item& it, DynamicOptions& d) {
   }
 }
 
+/// dynamics.winch: {rate: m/s | table: [[t, length], ...], min_length, max_length, line}.
+void readWinch(const Item& it, Winch& w) {
+  const Map m(it, {"rate", "table", "min_length", "max_length", "line"});
+  w = Winch();
+  w.given = true;
+  if (m.has("rate")) w.rate = readNumber(m.at("rate"));
+  if (m.has("table")) {
+    const Item tab = m.at("table");
+    const std::vector<Item> rows = listItems(tab);
+    if (rows.empty()) tab.fail("needs at least one row [t, length]");
+    for (const Item& r : rows) {
+      if (!r.node.IsSequence() || r.node.size() != 2) r.wrongType("a row [t, length] ([s], [m])");
+      std::vector<double> v(2);
+      for (std::size_t j = 0; j < 2; ++j)
+        v[j] = readNumber(Item{r.node[j], r.path + "[" + std::to_string(j) + "]", markOf(r.node[j], r.mark)});
+      if (!w.table.empty() && !(v[0] > w.table.back()[0]))
+        r.fail("t must increase down the table (previous t = " + formatNumber(w.table.back()[0]) + ")");
+      w.table.push_back(v);
+    }
+  }
+  w.min_length = m.number("min_length", 0.0, Range::NonNegative);
+  w.max_length = m.number("max_length", 0.0, Range::NonNegative);
+  if (m.has("line")) w.line = readString(m.at("line"));
+  const std::string err = w.validate(it.path);
+  if (!err.empty()) throw ProblemError(err + lineSuffix(it.mark));
+}
+
 }  // namespace
 
 void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   const Map m(it, {"duration", "dt", "output_interval", "snapshot_interval", "record_s", "scheme", "lambda_inf",
                    "alpha_m", "alpha_k", "gamma", "max_cut_levels", "tolerance", "max_iterations", "relaxation",
                    "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "threads", "adaptive_mesh", "mesh_weight", "top_motion",
-                   "gnss", "events"});
+                   "gnss", "events", "winch"});
   d.duration = m.number("duration", d.duration, Range::Positive);
   d.dt = m.number("dt", d.dt, Range::Positive);
   readOutputs(m, d, line_length);
@@ -404,6 +431,7 @@ void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   if (presentAndNotNull(m, "top_motion")) readTopMotion(m.at("top_motion"), d.top_motion);
   if (m.has("gnss")) readGnss(m.at("gnss"), d.gnss);
   if (presentAndNotNull(m, "events")) readEvents(m.at("events"), d);
+  if (presentAndNotNull(m, "winch")) readWinch(m.at("winch"), d.winch);
 }
 
 }  // namespace problem_io_detail

@@ -114,6 +114,7 @@ std::string DynamicOptions::validate() const {
     return bad(k + "relaxation", relaxation, "must be in (0, 1]");
   if (threads < 1 || threads > 2) return k + "threads = " + std::to_string(threads) + ": must be 1 or 2";
   if (!(std::isfinite(mesh_weight) && mesh_weight >= 0.0)) return bad(k + "mesh_weight", mesh_weight, "must be >= 0");
+  if (winch.given && !(e = winch.validate(k + "winch")).empty()) return e;
   for (std::size_t i = 0; i < events.size(); ++i) {
     const std::string ek = k + "events[" + std::to_string(i) + "]";
     if (!(e = events[i].validate(ek)).empty()) return e;

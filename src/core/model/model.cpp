@@ -578,6 +578,26 @@ std::string validateEvents(const Problem& p) {
   return {};
 }
 
+/// dynamics.winch of a single line (its own fields are checked by DynamicOptions): a top the
+/// winch can drive, its program against the line (validateWinchOnLine).
+std::string validateWinch(const Problem& p) {
+  const Winch& w = p.dynamics.winch;
+  if (!w.given) return {};
+  const std::string k = "dynamics.winch";
+  if (!w.line.empty()) return k + ".line = " + w.line + ": only a system file names the line of a winch";
+  const bool free_below = p.lower_end == Problem::LowerEnd::Free;
+  if (p.top.type == TopBoundary::Type::Force || p.top.type == TopBoundary::Type::Body ||
+      (p.top.type == TopBoundary::Type::Buoy && free_below))
+    return k + ": the winch sits at a top whose motion is prescribed (top: position, or a surface buoy over an "
+               "anchor); this top's position follows from its forces";
+  double top_start = 0.0;
+  for (std::size_t i = 0; i + 1 < p.segments.size(); ++i) top_start += p.segments[i].length;
+  const Segment& top = p.segments.back();
+  double last_body = 0.0;  // the winch takes in the line above the top segment's last body only
+  for (const BodyPlacement& b : top.bodies) last_body = std::max(last_body, b.at);
+  return validateWinchOnLine(w, k, p.totalLength(), top_start + last_body, top.spacing, p.dynamics.duration);
+}
+
 }  // namespace
 
 std::string validateEventOnLine(const LineEvent& ev, const std::string& key, const std::string& line,
@@ -609,6 +629,7 @@ std::string Problem::validate() const {
   if (!(e = static_options.validate()).empty()) return e;
   if (!(e = dynamics.validate()).empty()) return e;
   if (!(e = validateEvents(*this)).empty()) return e;
+  if (!(e = validateWinch(*this)).empty()) return e;
   return validateResources();
 }
 

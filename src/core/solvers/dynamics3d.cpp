@@ -1,4 +1,5 @@
 #include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+#include "dynamics3d_impl.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -28,99 +29,6 @@ using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
 }  // namespace
 
 // ------------------------------------------------------------------------------------------------
-
-struct DynamicSolver3D::Impl {
-  Problem problem;
-  Mesh mesh;
-  WaveField waves;
-  mutable WaveVelocityCache wave_cache;  ///< wave kinematics at the nodes (WaveVelocityCache)
-  CurrentProfile current;  ///< problem.environment.current, components precomputed
-  GeneralizedAlpha ga;
-  DynamicOptions opt;
-  std::function<TopState(double)> top;
-  StaticResult statics;
-  /// The lower end and the top (end_conditions.hpp): their rows at nodes 0 and n - 1 and the
-  /// state they carry between time levels. Anchored, 10 rows at the anchor and 6 at the top; with
-  /// a free lower end (towing, drifting) 7 at the end and 9 at the top.
-  std::unique_ptr<EndCondition3D> lower, upper;
-
-  double t = 0.0;
-  Eigen::VectorXd Y, Yd;        ///< accepted state and rate at time t
-  std::vector<Water> water;     ///< water velocity at each node at time t
-  Eigen::VectorXd S;            ///< spatial rows 0-5 of each interval at time t
-  double chi[N];
-  Totals totals;
-  BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
-  /// The second thread (dynamics.threads = 2; null with one): assembles and eliminates the
-  /// upper half of the line, as in the 2-D solver.
-  std::unique_ptr<ForkJoin> fork;
-  double factored_dt = 0.0;    ///< step size the factorization in newton_matrix belongs to [s]
-  Eigen::VectorXd Yd_prev;     ///< rate before the last accepted step (second-order predictor)
-  double last_dt = 0.0;        ///< size of the last accepted step [s]
-
-  // Line events (issue 21; docs/method.md "Line events").
-  std::vector<LineEvent> events;        ///< problem.dynamics.events
-  std::vector<char> event_done;         ///< per event: it happened
-  std::vector<LineEventRecord> event_log;
-  std::unique_ptr<EndCondition3D> lower_kept, upper_kept;  ///< an end before its release (null: held)
-  /// The interval the line parted in (-1: in one piece) and its rows: a released upper end at
-  /// its lower node, a released lower end at its upper node (end_conditions.hpp).
-  int parted = -1;
-  std::unique_ptr<EndCondition3D> part_top, part_lower;
-
-  int nodes() const { return static_cast<int>(mesh.nodes.size()); }
-  const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
-
-  /// Water at node j, at (x, y, z) and the time last given to wave_cache.setTime.
-  Water waterAt(int j, double x, double y, double z) const {
-    Water w;
-    current.at(z, w.w[0], w.w[1]);
-    current.gradientAt(z, w.dw_dz[0], w.dw_dz[1]);
-    w.z = z;
-    if (!wave_cache.empty() && z <= 0.0) {
-      double vx, vy, vz;
-      wave_cache.velocity3(static_cast<std::size_t>(j), x, y, z, vx, vy, vz);  // WaveField::velocity
-      w.w[0] += vx;
-      w.w[1] += vy;
-      w.w[2] += vz;
-    }
-    return w;
-  }
-
-  void waterField(const Eigen::VectorXd& y, double time, std::vector<Water>& out) const {
-    out.resize(static_cast<std::size_t>(nodes()));
-    wave_cache.setTime(time);
-    for (int j = 0; j < nodes(); ++j)
-      out[static_cast<std::size_t>(j)] = waterAt(j, y[N * j + X], y[N * j + eq3d::Y], y[N * j + Z]);
-  }
-
-  /// Rows 0-5 of the spatial part of every interval at state y (double): the rows that eq. 30
-  /// weights between the time levels.
-  void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out) const {
-    const int n = nodes();
-    out.setZero(kInertiaRows * (n - 1));
-    for (int j = 0; j + 1 < n; ++j) {
-      if (j == parted) continue;  // a parted interval's rows are not weighted in time
-      const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
-      const double* ya = y.data() + N * j;
-      double r[N];
-      if (iv.h > 0.0)
-        intervalSpatial(problem.environment, problem.materials[iv.material], iv.h, ya, ya + N,
-                        w[static_cast<std::size_t>(j)], w[static_cast<std::size_t>(j) + 1], r);
-      else
-        junctionForces(problem, iv, mat(j), mat(j + 1), ya, ya + N, w[static_cast<std::size_t>(j)], r);
-      const int rows = iv.h > 0.0 ? kInertiaRows : 3;
-      for (int q = 0; q < rows; ++q) out[kInertiaRows * j + q] = r[q];
-    }
-  }
-
-  /// The parts of the end rows that eq. 30 weights in time, at state y and time `time`.
-  void acceptEndLevels(const Eigen::VectorXd& y, const std::vector<Water>& w, double time) {
-    const int n = nodes();
-    lower->acceptLevel(y.data(), w.front(), time, top);
-    upper->acceptLevel(y.data() + N * (n - 1), w[static_cast<std::size_t>(n - 1)], time, top);
-  }
-};
 
 // --- One time step as a Newton system ------------------------------------------------------------
 //
@@ -198,7 +106,7 @@ class DynamicStepSystem3D : public NewtonSystem {
       if (j0 == 0) endRows<S16>(*im_.lower, 0, 0, Yv, R, J);
       intervalRows<S32>(Yv, R, J, j0, j1);
       if (im_.parted >= j0 && im_.parted < j1) partedRows<S16>(Yv, R, J);
-      if (j1 == n - 1) endRows<S16>(*im_.upper, n - 1, end_rows_ + N * (n - 1), Yv, R, J);
+      if (j1 == n - 1) endRows<S16>(*im_.upper, n - 1, end_rows_ + N * (n - 1), Yv, R, J, im_.winch.rate);
     });
   }
 
@@ -215,7 +123,7 @@ class DynamicStepSystem3D : public NewtonSystem {
   /// The rows of an end (end_conditions.hpp) at `node`, from row0.
   template <class S16>
   void endRows(const EndCondition3D& end, int node, int row0, const Eigen::VectorXd& Yv, Eigen::VectorXd& R,
-               BandedMatrix* J) const {
+               BandedMatrix* J, double payout = 0.0) const {
     const int col0 = N * node;
     S16 y[N], r[kMaxEndRows];
     for (int k = 0; k < N; ++k) y[k] = variable<S16>(Yv[col0 + k], N, k);
@@ -226,6 +134,9 @@ class DynamicStepSystem3D : public NewtonSystem {
     c.ydp = im_.Yd.data() + col0;
     c.water = &water_[static_cast<std::size_t>(node)];
     c.w = weights();
+    c.payout = payout;
+    if (payout != 0.0) c.below = im_.Y.data() + col0 - N;
+    c.winch = &end == im_.upper.get() && im_.winch.used;
     end.dynamicResidual(c, y, r);
     scatter(r, end.dynamicRows(), row0, col0, N, R, J);
   }
@@ -420,6 +331,7 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   im.spatialRows(im.Y, im.water, im.S);
   im.acceptEndLevels(im.Y, im.water, 0.0);
   setErrorScales(im, problem);
+  winchSetUp(im);
 }
 
 DynamicSolver3D::~DynamicSolver3D() = default;
@@ -433,6 +345,13 @@ void DynamicSolver3D::setLowerEndInput(std::function<TopState(double)> source) {
   held = source ? makeMovingAnchor3D(im.problem, std::move(source)) : makeLowerEnd3D(im.problem, im.mat(0));
 }
 double DynamicSolver3D::time() const { return impl_->t; }
+double DynamicSolver3D::lineLength() const { return impl_->mesh.nodes.back().s; }
+bool DynamicSolver3D::hasWinch() const { return impl_->winch.able; }
+double DynamicSolver3D::winchRate() const {
+  const WinchState& w = impl_->winch;
+  constexpr double kAfter = 1e-9;  // [s] the rate of the piece that starts now
+  return w.active() ? w.program.rateAt(impl_->t + kAfter) : 0.0;
+}
 const StaticResult& DynamicSolver3D::initialStatic() const { return impl_->statics; }
 DynamicSolver3D::Totals DynamicSolver3D::totals() const { return impl_->totals; }
 
@@ -446,6 +365,11 @@ StaticResult DynamicSolver3D::snapshot() const {
   StaticResult r = staticResult3DFromState(impl_->problem, impl_->mesh, impl_->Y);
   r.summary.converged = true;
   return r;
+}
+
+void rowsChanged(DynamicSolver3D::Impl& im) {
+  im.newton_matrix.setZero();
+  im.factored_dt = 0.0;
 }
 
 namespace {
@@ -480,17 +404,13 @@ void logEvent(DynamicSolver3D::Impl& im, const std::string& what, int node, cons
   im.event_log.push_back(r);
 }
 
-/// The rows change: the kept factorization and the predictor's rate history no longer apply.
-void rowsChanged(DynamicSolver3D::Impl& im) {
-  im.newton_matrix.setZero();
-  im.factored_dt = 0.0;
-}
 
 void releaseEnd(DynamicSolver3D::Impl& im, LineEvent::End end, const std::string& cause) {
   const int n = im.nodes();
   if (end == LineEvent::End::Top) {
     if (im.upper_kept) throw std::logic_error("release: the line's top is let go already");
     logEvent(im, "released top", n - 1, cause);
+    im.winch.program = WinchProgram();  // the line is off the winch
     const int rows = im.upper->dynamicRows();
     im.upper_kept = std::move(im.upper);
     im.upper = makeReleasedUpperEnd3D(im.mat(n - 1), rows);
@@ -523,6 +443,7 @@ void partAt(DynamicSolver3D::Impl& im, int k, const std::string& cause) {
   if (!usable(j)) throw std::logic_error("break: no interval beside node " + std::to_string(k) + " can part");
   logEvent(im, "parted", j, cause);
   im.parted = j;
+  if (j >= n - 3) im.winch.program = WinchProgram();  // parted at the winch: it stops
   im.part_top = makeReleasedUpperEnd3D(im.mat(j), N - im.lower->dynamicRows());
   im.part_lower = makeReleasedLowerEnd3D(im.mat(j + 1), N - im.upper->dynamicRows());
   rowsChanged(im);
@@ -591,6 +512,7 @@ void addReport(StepReport& total, const StepReport& rep) {
 /// One attempted step of size dt from the accepted state; on success the state advances.
 bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   const double t_new = im.t + dt;
+  if (!winchBeginStep(im, t_new, rep.message)) return false;
   DynamicStepSystem3D sys(im, t_new, dt, im.top(t_new));
   // Predictor: constant rate; with modified Newton (smooth problems) the rate's change over the
   // last step of the same size is extrapolated too, which starts the iteration closer.
@@ -607,6 +529,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.totals.newton_iterations += s.iterations;
   im.totals.jacobians += work.assemblies;
   if (!s.converged) {
+    winchUndoStep(im);
     im.newton_matrix.setZero();  // factored at an iterate that did not converge
     std::ostringstream os;
     os << "t = " << t_new << " s (dt = " << dt << " s): " << s.message;
@@ -622,6 +545,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.water = sys.water();
   im.spatialRows(im.Y, im.water, im.S);
   im.acceptEndLevels(im.Y, im.water, im.t);
+  winchRemesh(im);
   breakOnTension(im);
   ++rep.steps;
   ++im.totals.steps;
@@ -683,6 +607,12 @@ struct DynamicSolver3D::Saved {
   int parted = -1;
   double last_dt = 0.0;
   Totals totals;
+  // The winch (saved when it runs): the mesh it changes, its program and length.
+  bool winch = false;
+  std::vector<MeshNode> nodes;
+  std::vector<MeshInterval> intervals;
+  WinchProgram program;
+  double length = 0.0, top_length = 0.0;
 };
 
 std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
@@ -703,6 +633,14 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->parted = im.parted;
   s->last_dt = im.last_dt;
   s->totals = im.totals;
+  if (im.winch.active()) {
+    s->winch = true;
+    s->nodes = im.mesh.nodes;
+    s->intervals = im.mesh.intervals;
+    s->program = im.winch.program;
+    s->length = im.winch.length;
+    s->top_length = im.problem.segments.back().length;
+  }
   return s;
 }
 
@@ -726,6 +664,19 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.upper->setState(s.upper_state);
   im.last_dt = s.last_dt;
   im.totals = s.totals;
+  if (s.winch) {
+    const bool resized = s.nodes.size() != im.mesh.nodes.size();
+    im.mesh.nodes = s.nodes;
+    im.mesh.intervals = s.intervals;
+    im.winch.program = s.program;
+    im.winch.length = s.length;
+    im.winch.rate = 0.0;
+    im.problem.segments.back().length = s.top_length;
+    if (resized) {
+      im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size(), true);
+      rowsChanged(im);
+    }
+  }
   // A kept factorization (modified Newton) stays: it is still a Jacobian of this step size.
 }
 

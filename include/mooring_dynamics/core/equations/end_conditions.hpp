@@ -92,6 +92,17 @@ struct DynamicEnd3D {
   const double* ydp = nullptr;         ///< their rates at the previous level (16)
   const eq3d::Water* water = nullptr;  ///< water at the node at the iterate
   AlphaWeights w;
+  /// A winch's payout rate dL/dt at a top [m/s] (+ pays out; docs/method.md "Winch"): the line
+  /// runs through the top, so its material there moves at the top's velocity less
+  /// dL/dt (1 + eps) along the tangent. 0 without a winch.
+  double payout = 0.0;
+  /// With a payout: the unknowns of the node below the top at the previous level (16), whose
+  /// (1 + eps) e1 enters the top interval's mean (1 + eps) e1, the direction the coordinates row
+  /// (eq. 42) moves the top along as the interval grows.
+  const double* below = nullptr;
+  /// A winch has run at this top: a top driven by its velocity holds its position by the
+  /// feedback of `prescribe: position` (the moving top interval lags it by O(dL/dt dt)).
+  bool winch = false;
 };
 
 /// One end of a 3-D line.

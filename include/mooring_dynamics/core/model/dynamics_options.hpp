@@ -8,6 +8,7 @@
 #include "mooring_dynamics/core/model/gnss.hpp"
 #include "mooring_dynamics/core/model/ship_track.hpp"
 #include "mooring_dynamics/core/model/time_integration.hpp"
+#include "mooring_dynamics/core/model/winch.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -136,6 +137,9 @@ struct DynamicOptions {
   GnssOptions gnss;
   /// Releases and breaks (`dynamics.events`), in the order given.
   std::vector<LineEvent> events;
+  /// A winch at the top paying the line out or hauling it in (`dynamics.winch`; given = false:
+  /// none, the length fixed).
+  Winch winch;
 
   std::string validate() const;
 };

@@ -136,14 +136,9 @@ class SeriesRecorder {
   SeriesRecorder(const Solver& solver, const Problem& problem, double dout, DynamicSeries& out)
       : solver_(solver), problem_(problem), out_(out) {
     const DynamicOptions& opt = problem.dynamics;
-    const std::vector<double> s = solver.nodeArclengths();
-    for (double want : opt.record_s) {
-      std::size_t best = 0;
-      for (std::size_t j = 1; j < s.size(); ++j)
-        if (std::abs(s[j] - want) < std::abs(s[best] - want)) best = j;
-      rec_.push_back(best);
-      out.record_s.push_back(s[best]);
-    }
+    findRecordedNodes();
+    out.record_s.clear();
+    for (std::size_t i : rec_) out.record_s.push_back(s_[i]);
     out.node_tension.assign(rec_.size(), {});
     out.node_x.assign(rec_.size(), {});
     out.node_y.assign(rec_.size(), {});
@@ -156,6 +151,7 @@ class SeriesRecorder {
   /// Sample k, at time t.
   void record(double t, long k) {
     const StaticResult r = solver_.snapshot();
+    if (r.nodes.size() != s_.size()) findRecordedNodes();  // a winch added or took out nodes
     out_.t.push_back(t);
     out_.top_tension.push_back(r.nodes.back().tension);
     out_.anchor_tension.push_back(r.nodes.front().tension);
@@ -163,6 +159,8 @@ class SeriesRecorder {
     out_.top_y.push_back(r.nodes.back().y);
     out_.top_z.push_back(r.nodes.back().z);
     out_.peak.add(problem_.materials, problem_.segments, r.nodes, t);
+    if constexpr (!std::is_same_v<Solver, DynamicSolver2D>)
+      if (problem_.dynamics.winch.given) out_.line_length.push_back(solver_.lineLength());
     for (std::size_t i = 0; i < rec_.size(); ++i) {
       out_.node_tension[i].push_back(r.nodes[rec_[i]].tension);
       out_.node_x[i].push_back(r.nodes[rec_[i]].x);
@@ -176,9 +174,23 @@ class SeriesRecorder {
   }
 
  private:
+  /// The nodes nearest to dynamics.record_s (by unstretched arclength, which a winch leaves on
+  /// the nodes below its top interval).
+  void findRecordedNodes() {
+    s_ = solver_.nodeArclengths();
+    rec_.clear();
+    for (double want : problem_.dynamics.record_s) {
+      std::size_t best = 0;
+      for (std::size_t j = 1; j < s_.size(); ++j)
+        if (std::abs(s_[j] - want) < std::abs(s_[best] - want)) best = j;
+      rec_.push_back(best);
+    }
+  }
+
   const Solver& solver_;
   const Problem& problem_;
   DynamicSeries& out_;
+  std::vector<double> s_;         ///< the nodes' arclengths when rec_ was found [m]
   std::vector<std::size_t> rec_;  ///< the recorded nodes
   long snap_every_ = 0;           ///< a snapshot every this many samples (0: none)
 };

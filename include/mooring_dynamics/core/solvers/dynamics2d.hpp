@@ -94,6 +94,9 @@ struct DynamicSeries {
   bool completed = false;
   std::string message;                          ///< failure message when not completed
   std::vector<LineEventRecord> events;          ///< line events that happened (3-D runs)
+  /// The line's unstretched length at each sample [m], when a winch pays it out or hauls it in
+  /// (dynamics.winch; empty otherwise).
+  std::vector<double> line_length;
   long steps = 0, cuts = 0, newton_iterations = 0;
   long jacobians = 0;  ///< Jacobians assembled (3-D; 0 from the 2-D solver, one per iteration)
   double wall_seconds = 0.0;

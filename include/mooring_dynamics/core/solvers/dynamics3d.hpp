@@ -52,6 +52,23 @@ class DynamicSolver3D {
   /// That end was let go (by an event or releaseEnd; a break at an end node lets it go too).
   bool endReleased(LineEvent::End end) const;
 
+  /// The winch at the top (issue 21; docs/method.md "Winch"; the file's dynamics.winch runs
+  /// by itself). The line's unstretched length now, anchor (or free end) to top [m].
+  double lineLength() const;
+  /// The winch's rate now [m/s] (+ pays out; 0 stopped or none).
+  double winchRate() const;
+  /// The top takes a winch: a position top (a ship's or a tow point's) or a surface buoy over
+  /// an anchor, over a segment with length to give.
+  bool hasWinch() const;
+  /// Command the winch from now on: to `target` [m] at speed |rate| [m/s] and stop there, or
+  /// (target NaN) at `rate` until its limit, where it stops (none when paying out without a
+  /// max_length). Replaces the file's program. Returns what the winch will do ("to 120 m at
+  /// 0.5 m/s, there at t = 80 s"). Throws std::invalid_argument naming the field for a target
+  /// outside the limits (dynamics.winch.min_length / max_length, the top segment's shortest),
+  /// a rate that is not finite, a target without a speed, and on a line without a winch or
+  /// whose top is let go.
+  std::string commandWinch(double rate, double target);
+
   double time() const;
   const StaticResult& initialStatic() const;
   StaticResult snapshot() const;

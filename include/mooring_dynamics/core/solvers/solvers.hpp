@@ -18,9 +18,16 @@ inline StaticResult solveStaticModel(const Problem& problem) {
   return problem.formulation == Formulation::ThreeD ? solveStatic3D(problem) : solveStatic(problem);
 }
 
-/// Dynamic run of problem.dynamics with the problem's model (as runDynamic).
+/// Dynamic run of problem.dynamics with the problem's model (as runDynamic). A 2-D problem with
+/// a winch (dynamics.winch) runs on the 3-D equations in its x-z plane, where the winch's nodes
+/// are added and taken out (docs/method.md "Winch"); the series are the same quantities.
 inline DynamicSeries runDynamicModel(const Problem& problem,
                                      const std::function<void(double, double)>& progress = nullptr) {
+  if (problem.formulation == Formulation::TwoD && problem.dynamics.winch.given) {
+    Problem planar = problem;
+    planar.formulation = Formulation::ThreeD;
+    return runDynamic3D(planar, progress);
+  }
   return problem.formulation == Formulation::ThreeD ? runDynamic3D(problem, progress) : runDynamic(problem, progress);
 }
 
