@@ -23,6 +23,7 @@ CableState toCableState(const std::vector<core::NodeState>& nodes, const EndForc
   msg.header.stamp = stamp;
   msg.header.frame_id = frame_id;
   msg.line_name = line_name;
+  if (!nodes.empty()) msg.line_length = nodes.back().s;
   const std::size_t n = nodes.size();
   msg.s.reserve(n);
   msg.positions.reserve(n);

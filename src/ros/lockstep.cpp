@@ -91,6 +91,16 @@ class Solver3D final : public LockstepSolver {
     return {};
   }
   std::vector<core::LineEventRecord> eventLog() const override { return s_.eventLog(); }
+  std::string commandWinch(double rate, double target, std::string& note) override {
+    try {
+      note = s_.commandWinch(rate, target);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return {};
+  }
+  double lineLength() const override { return s_.lineLength(); }
+  double winchRate() const override { return s_.winchRate(); }
 
  private:
   core::DynamicSolver3D s_;
@@ -162,6 +172,14 @@ std::string LockstepDriver::release(core::LineEvent::End end, const std::string&
   if (!started_ || !solver_) return "no motion sample yet: the run starts at the first one; let go after it";
   return solver_->releaseEnd(end, cause);
 }
+
+std::string LockstepDriver::winch(double rate, double target, std::string& note) {
+  if (!threeD()) return "model = 2d: the line node's winch needs model: 3d";
+  if (!started_ || !solver_) return "no motion sample yet: the run starts at the first one; command the winch after it";
+  return solver_->commandWinch(rate, target, note);
+}
+double LockstepDriver::lineLength() const { return solver_ ? solver_->lineLength() : problem_.totalLength(); }
+double LockstepDriver::winchRate() const { return solver_ ? solver_->winchRate() : 0.0; }
 
 std::vector<core::LineEventRecord> LockstepDriver::events() const {
   return solver_ ? solver_->eventLog() : std::vector<core::LineEventRecord>{};
@@ -325,7 +343,9 @@ LockstepDriver::Result LockstepDriver::onSample(double t, double x, double y, do
   if (!r.report.ok) {
     const core::StepReport rep = r.report;
     // A line let go or parted is not rebuilt from statics (statics would heal it).
-    if (++failures_ >= options_.failures_to_reinit && solver_->eventLog().empty()) {
+    // Nor one its winch paid out or hauled in (statics would give it the file's length back).
+    if (++failures_ >= options_.failures_to_reinit && solver_->eventLog().empty() &&
+        solver_->lineLength() == solver_->initialStatic().nodes.back().s) {
       const int n = failures_;
       r = start(t, x, y, z, Outcome::RecoveredFailure,
                 "dynamic solver failed (" + std::to_string(n) + " samples in a row): " + rep.message);

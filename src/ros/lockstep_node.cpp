@@ -124,6 +124,7 @@ LockstepNode::LockstepNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
   reset_srv_ = pnh_.advertiseService("reset", &LockstepNode::onReset, this);
   solve_srv_ = pnh_.advertiseService("solve_static", &LockstepNode::onSolveStatic, this);
   release_srv_ = pnh_.advertiseService("release", &LockstepNode::onRelease, this);
+  winch_srv_ = pnh_.advertiseService("winch", &LockstepNode::onWinch, this);
   std::string input;
   if (motion_source_ == "pose") {
     motion_sub_ = pnh_.subscribe("top_pose", 100, &LockstepNode::onPose, this);
@@ -306,6 +307,7 @@ void LockstepNode::publish(const ros::Time& stamp) {
   const core::StaticResult& s = driver_->state();
   last_state_ = toCableState(s, problem_.name, frame_id_, stamp);
   for (const core::LineEventRecord& e : driver_->events()) last_state_.events.push_back(core::lineEventText(e));
+  last_state_.winch_rate = driver_->winchRate();
   state_pub_.publish(last_state_);
 
   // Force of the line on the vessel at the fairlead: minus the force the vessel applies to the line.
@@ -396,6 +398,8 @@ void LockstepNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   // Line events (an end let go, the line parted): counted, the last one shown, and a warning.
   const std::vector<core::LineEventRecord> events = driver_->events();
   values.emplace_back("line events", std::to_string(events.size()));
+  values.emplace_back("line length", formatNumber(driver_->lineLength()) + " m");
+  values.emplace_back("winch rate", formatNumber(driver_->winchRate()) + " m/s");
   if (!events.empty()) {
     values.emplace_back("last line event", core::lineEventText(events.back()));
     if (st.level < diagnostic_msgs::DiagnosticStatus::WARN) {
@@ -434,6 +438,22 @@ bool LockstepNode::onRelease(ReleaseLine::Request& req, ReleaseLine::Response& r
                                   " s; it carries no force from the next sample on"
                             : err;
   if (res.success) ROS_WARN("mooring_dynamics: ~release: %s", res.message.c_str());
+  return true;
+}
+
+bool LockstepNode::onWinch(Winch::Request& req, Winch::Response& res) {
+  res.success = false;
+  res.line_length = driver_->lineLength();
+  if (!req.line.empty() && req.line != problem_.name) {
+    res.message = "line = " + req.line + ": this node runs one line, " + problem_.name + " (or leave line empty)";
+    return true;
+  }
+  std::string note;
+  const double target = req.target_length > 0.0 ? req.target_length : std::numeric_limits<double>::quiet_NaN();
+  const std::string err = driver_->winch(req.rate, target, note);
+  res.success = err.empty();
+  res.message = err.empty() ? "winch " + note : err;
+  ROS_INFO("mooring_dynamics: ~winch: %s", res.message.c_str());
   return true;
 }
 

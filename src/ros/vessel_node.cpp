@@ -168,6 +168,7 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   reset_srv_ = pnh_.advertiseService("reset", &VesselNode::onReset, this);
   solve_srv_ = pnh_.advertiseService("solve_static", &VesselNode::onSolveStatic, this);
   release_srv_ = pnh_.advertiseService("release", &VesselNode::onRelease, this);
+  winch_srv_ = pnh_.advertiseService("winch", &VesselNode::onWinch, this);
   std::string input;
   if (motion_source_ == "pose") {
     motion_sub_ = pnh_.subscribe("vessel_pose", 100, &VesselNode::onPose, this);
@@ -351,6 +352,7 @@ void VesselNode::publish(const ros::Time& stamp) {
   for (std::size_t i = 0; i < system_.lines.size(); ++i) {
     CableState cs = toCableState(lockstep_->dynamics().line(i), system_.lines[i].name, frame_id_, stamp);
     cs.converged = !failed_sample_;
+    cs.winch_rate = lockstep_->dynamics().lineWinchRate(i);
     for (const core::LineEventRecord& e : events)
       if (e.line == system_.lines[i].name) cs.events.push_back(core::lineEventText(e));
     state_pubs_[i].publish(cs);
@@ -414,6 +416,15 @@ void VesselNode::publishAnchorFrames() {
   static_broadcaster_->sendTransform(frames);
 }
 
+namespace {
+/// A system line's unstretched length in the file [m].
+double fileLength(const core::SystemLine& l) {
+  double L = 0.0;
+  for (const core::Segment& g : l.segments) L += g.length;
+  return L;
+}
+}  // namespace
+
 void VesselNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   const double now = wallNow();
   if (monitor_->silent(now) && monitor_->everReceived())
@@ -427,6 +438,14 @@ void VesselNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   if (!statuses.empty()) {
     VesselMonitor::Status& o = statuses.front();
     o.values.emplace_back("line events", std::to_string(events.size()));
+    // Lines a winch paid out or hauls in: their length and rate.
+    const std::vector<double> lengths = lockstep_->lineLengths();
+    for (std::size_t i = 0; i < lengths.size(); ++i)
+      if (lengths[i] != fileLength(system_.lines[i]) ||
+          lockstep_->dynamics().lineWinchRate(i) != 0.0)
+        o.values.emplace_back("line length " + system_.lines[i].name,
+                              formatNumber(lengths[i]) + " m, winch " +
+                                  formatNumber(lockstep_->dynamics().lineWinchRate(i)) + " m/s");
     if (!events.empty()) {
       o.values.emplace_back("last line event", core::lineEventText(events.back()));
       if (o.level < VesselMonitor::WARN) {
@@ -453,6 +472,19 @@ bool VesselNode::onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res
                                   std::to_string(lockstep_->solverTime()) + " s; it pulls nothing from the next sample on"
                             : err;
   if (res.success) ROS_WARN("mooring_dynamics: %s", res.message.c_str());
+  return true;
+}
+
+bool VesselNode::onWinch(Winch::Request& req, Winch::Response& res) {
+  std::string note;
+  const double target = req.target_length > 0.0 ? req.target_length : std::numeric_limits<double>::quiet_NaN();
+  const std::string err = lockstep_->winchLine(req.line, req.rate, target, note);
+  res.success = err.empty();
+  res.message = err.empty() ? "line " + req.line + ": winch " + note : err;
+  const std::vector<double> lengths = lockstep_->lineLengths();
+  for (std::size_t i = 0; i < system_.lines.size() && i < lengths.size(); ++i)
+    if (system_.lines[i].name == req.line) res.line_length = lengths[i];
+  ROS_INFO("mooring_dynamics: ~winch: %s", res.message.c_str());
   return true;
 }
 

@@ -29,6 +29,7 @@
 #include "lockstep_listener.hpp"
 #include "mooring_dynamics/ReleaseLine.h"
 #include "mooring_dynamics/SolveStatic.h"
+#include "mooring_dynamics/Winch.h"
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/solvers/solvers.hpp"
 
@@ -269,6 +270,65 @@ TEST(Lockstep3D, ReleaseServiceLetsTheAnchorGo) {
   ASSERT_TRUE(cl2.call(r2));
   EXPECT_FALSE(r2.response.success);
   EXPECT_NE(r2.response.message.find("need model: 3d"), std::string::npos) << r2.response.message;
+}
+
+// ~winch: /odom3d's fairlead winch pays out 2 m at 1 m/s; the states carry the line's length (the
+// last node's s) and the rate, the target is reached and held. A target below the top segment's
+// shortest is refused with the limits named, and a 2-D line's node refuses the winch.
+TEST(Lockstep3D, WinchServicePaysOutToTheTarget) {
+  const Top top = staticTop();
+  ros::NodeHandle nh;
+  Listener l("/odom3d");
+  ros::Publisher pub = nh.advertise<nav_msgs::Odometry>("/odom3d/top_odom", 100);
+  ASSERT_TRUE(waitForConnection(pub, l)) << "no connection to /odom3d";
+  auto sample = [&](const ros::Time& t) {
+    nav_msgs::Odometry o;
+    o.header.stamp = t;
+    o.header.frame_id = "world";
+    o.pose.pose.position.x = top.x;
+    o.pose.pose.position.y = top.y + 0.65;  // where OdometryYAndVesselFrame left it
+    o.pose.pose.position.z = top.z;
+    o.pose.pose.orientation.w = 1.0;
+    pub.publish(o);
+    return l.waitFor(t, 10.0);
+  };
+  const ros::Time t0 = kT0 + ros::Duration(20.0);
+  ASSERT_TRUE(sample(t0));
+  const double L0 = l.states[t0.toNSec()].line_length;
+  EXPECT_NEAR(L0, l.states[t0.toNSec()].s.back(), 1e-12);
+
+  ros::ServiceClient cl = nh.serviceClient<mooring_dynamics::Winch>("/odom3d/winch");
+  ASSERT_TRUE(cl.waitForExistence(ros::Duration(5.0)));
+  mooring_dynamics::Winch bad;
+  bad.request.rate = -1.0;
+  bad.request.target_length = 0.5;
+  ASSERT_TRUE(cl.call(bad));
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("target length = 0.5 m: outside"), std::string::npos) << bad.response.message;
+  EXPECT_NEAR(bad.response.line_length, L0, 1e-12);
+
+  mooring_dynamics::Winch w;
+  w.request.rate = 1.0;
+  w.request.target_length = L0 + 2.0;
+  ASSERT_TRUE(cl.call(w));
+  ASSERT_TRUE(w.response.success) << w.response.message;
+  for (int k = 1; k <= 30; ++k) ASSERT_TRUE(sample(t0 + ros::Duration(0.1 * k))) << "k = " << k;
+  const CableState& mid = l.states[(t0 + ros::Duration(1.0)).toNSec()];
+  EXPECT_NEAR(mid.line_length, L0 + 1.0, 1e-6);
+  EXPECT_NEAR(mid.winch_rate, 1.0, 1e-9);
+  const CableState& end = l.states[(t0 + ros::Duration(3.0)).toNSec()];
+  EXPECT_TRUE(end.converged);
+  EXPECT_NEAR(end.line_length, L0 + 2.0, 1e-6);
+  EXPECT_EQ(end.winch_rate, 0.0);
+  EXPECT_NEAR(end.positions.back().x, top.x, 0.05);  // the fairlead still holds the top
+
+  ros::ServiceClient cl2 = nh.serviceClient<mooring_dynamics::Winch>("/planar2d/winch");
+  ASSERT_TRUE(cl2.waitForExistence(ros::Duration(5.0)));
+  mooring_dynamics::Winch w2;
+  w2.request.rate = 0.5;
+  ASSERT_TRUE(cl2.call(w2));
+  EXPECT_FALSE(w2.response.success);
+  EXPECT_NE(w2.response.message.find("needs model: 3d"), std::string::npos) << w2.response.message;
 }
 
 TEST(Lockstep2D, OutOfPlanePoseDroppedAndNamed) {

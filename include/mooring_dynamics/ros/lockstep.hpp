@@ -77,6 +77,15 @@ class LockstepSolver {
   }
   /// The line events so far (its problem's dynamics.events and releaseEnd calls).
   virtual std::vector<core::LineEventRecord> eventLog() const { return {}; }
+  /// The winch at the top (core::DynamicSolver3D::commandWinch): empty when done, what it will
+  /// do in `note`; else why not.
+  virtual std::string commandWinch(double rate, double target, std::string& note) {
+    (void)rate, (void)target, (void)note;
+    return "model = 2d: the line node's winch needs model: 3d";
+  }
+  /// The line's unstretched length now [m] and the winch's rate [m/s].
+  virtual double lineLength() const { return initialStatic().nodes.back().s; }
+  virtual double winchRate() const { return 0.0; }
 };
 
 /// Builds a solver started from the statics of `problem` (its top boundary as given). Throws
@@ -189,6 +198,11 @@ class LockstepDriver {
   std::string release(core::LineEvent::End end, const std::string& cause);
   /// The line events of the current solver (empty after a re-initialisation).
   std::vector<core::LineEventRecord> events() const;
+  /// Command the winch at the top (LockstepSolver::commandWinch): empty when done, else why not.
+  std::string winch(double rate, double target, std::string& note);
+  /// The line's length [m] and the winch's rate [m/s] now (the file's length before the start).
+  double lineLength() const;
+  double winchRate() const;
 
  private:
   Result start(double t, double x, double y, double z, Outcome outcome, const std::string& why);

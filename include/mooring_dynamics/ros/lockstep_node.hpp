@@ -29,6 +29,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "mooring_dynamics/ReleaseLine.h"
+#include "mooring_dynamics/Winch.h"
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
@@ -60,6 +61,8 @@ class LockstepNode {
   bool onSolveStatic(SolveStatic::Request& req, SolveStatic::Response& res);
   /// ~release: let go an end of the line (ReleaseLine; `line` empty or the problem's name).
   bool onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res);
+  /// ~winch: command the winch at the top (Winch; model: 3d).
+  bool onWinch(Winch::Request& req, Winch::Response& res);
 
   const LockstepDriver& driver() const { return *driver_; }
   const core::Problem& problem() const { return problem_; }
@@ -92,7 +95,7 @@ class LockstepNode {
   std::unique_ptr<GnssInput> gnss_;  ///< ~motion_source gnss
   ros::Publisher state_pub_, marker_pub_, wrench_pub_, diag_pub_;
   ros::Subscriber motion_sub_;
-  ros::ServiceServer reset_srv_, solve_srv_, release_srv_;
+  ros::ServiceServer reset_srv_, solve_srv_, release_srv_, winch_srv_;
   ros::WallTimer tf_timer_, diag_timer_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;

@@ -36,6 +36,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "mooring_dynamics/ReleaseLine.h"
+#include "mooring_dynamics/Winch.h"
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -71,6 +72,8 @@ class VesselNode {
 
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSolveStatic(VesselStatics::Request& req, VesselStatics::Response& res);
+  /// ~winch: command the winch at a line's fairlead (Winch).
+  bool onWinch(Winch::Request& req, Winch::Response& res);
   /// ~release: let go an end of a line (ReleaseLine).
   bool onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res);
 
@@ -107,7 +110,7 @@ class VesselNode {
   std::vector<ros::Publisher> state_pubs_;     ///< per line
   std::vector<ros::Publisher> fairlead_pubs_;  ///< per line (empty publisher: the line has no end on the vessel)
   ros::Subscriber motion_sub_;
-  ros::ServiceServer reset_srv_, solve_srv_, release_srv_;
+  ros::ServiceServer reset_srv_, solve_srv_, release_srv_, winch_srv_;
   ros::WallTimer tf_timer_, diag_timer_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;

@@ -121,6 +121,10 @@ struct SystemDynamics::Impl {
         why = "line " + system.lines[i].name + " was " + lines[i]->eventLog().front().what +
               " (line events cannot be undone by a restart from statics)";
         return false;
+      } else if (lines[i]->lineLength() != lines[i]->initialStatic().nodes.back().s) {
+        why = "line " + system.lines[i].name + " was paid out or hauled in by its winch (a restart from statics "
+              "would give it its file length back)";
+        return false;
       }
     SystemProblem sub = placed;
     sub.points.clear();
@@ -334,6 +338,12 @@ std::array<double, 3> SystemDynamics::pointVelocity(std::size_t p) const {
 void SystemDynamics::releaseLineEnd(std::size_t line, LineEvent::End end, const std::string& cause) {
   impl_->lines.at(line)->releaseEnd(end, cause);
 }
+
+std::string SystemDynamics::commandLineWinch(std::size_t line, double rate, double target) {
+  return impl_->lines.at(line)->commandWinch(rate, target);
+}
+double SystemDynamics::lineLength(std::size_t line) const { return impl_->lines.at(line)->lineLength(); }
+double SystemDynamics::lineWinchRate(std::size_t line) const { return impl_->lines.at(line)->winchRate(); }
 
 std::vector<LineEventRecord> SystemDynamics::lineEvents() const {
   const Impl& im = *impl_;

@@ -204,6 +204,29 @@ std::string VesselLockstep::releaseLine(const std::string& line, LineEvent::End 
   return "line = " + line + ": no line of that name (lines: " + names + ")";
 }
 
+std::string VesselLockstep::winchLine(const std::string& line, double rate, double target, std::string& note) {
+  if (!started_ || !sim_) return "no motion sample yet: the run starts at the first one; command the winch after it";
+  std::string names;
+  for (std::size_t i = 0; i < system_.lines.size(); ++i) {
+    names += (i ? ", " : "") + system_.lines[i].name;
+    if (system_.lines[i].name != line) continue;
+    try {
+      note = sim_->commandLineWinch(i, rate, target);
+    } catch (const std::invalid_argument& e) {
+      return "line = " + line + ": " + e.what();
+    }
+    return {};
+  }
+  return "line = " + line + ": no line of that name (lines: " + names + ")";
+}
+
+std::vector<double> VesselLockstep::lineLengths() const {
+  std::vector<double> out;
+  if (!sim_) return out;
+  for (std::size_t i = 0; i < system_.lines.size(); ++i) out.push_back(sim_->lineLength(i));
+  return out;
+}
+
 VesselLockstep::Result VesselLockstep::reset() {
   if (!started_) return {};
   const BodyTwist tw{last_motion_.pose.toBody(last_motion_.velocity), last_motion_.pose.toBody(last_motion_.angular_velocity)};

@@ -110,6 +110,11 @@ class SystemDynamics {
   void releaseLineEnd(std::size_t line, LineEvent::End end, const std::string& cause);
   /// Every line's events so far, in time order (system time, line named).
   std::vector<LineEventRecord> lineEvents() const;
+  /// The winch at line `line`'s top (DynamicSolver3D::commandWinch; throws its
+  /// std::invalid_argument) and the line's length now [m].
+  std::string commandLineWinch(std::size_t line, double rate, double target);
+  double lineLength(std::size_t line) const;
+  double lineWinchRate(std::size_t line) const;
 
   double time() const;
   const SystemStaticResult& initialStatic() const;

@@ -100,6 +100,12 @@ class VesselLockstep {
   /// re-initialisation (reset, a loop in the stream, repeated failures) starts every line
   /// intact from statics again.
   std::string releaseLine(const std::string& line, LineEvent::End end, const std::string& cause);
+  /// Command the winch at a line's fairlead (DynamicSolver3D::commandWinch: to `target` [m] at
+  /// |rate| [m/s], or at `rate` until its limit with target NaN). Empty when done (what the
+  /// winch will do in `note`), else why not.
+  std::string winchLine(const std::string& line, double rate, double target, std::string& note);
+  /// The unstretched length of each line now, in the problem's order [m] (empty before the start).
+  std::vector<double> lineLengths() const;
   /// The wrench now (state of the last published sample), and every line now.
   VesselWrench wrench() const { return sim_->vesselWrench(); }
   std::vector<StaticResult> lines() const;
