@@ -209,3 +209,36 @@ TEST(VesselLockstep, ReasonsOfDropsAndRestarts) {
   EXPECT_EQ(run.reset().reason, R::Reset);
   EXPECT_EQ(run.dropped(), 8);
 }
+
+// A fairlead winch (VesselLockstep::winchLine): before the first sample and for an unknown line
+// it says why not; hauling a leg in 1 m at 0.5 m/s shortens it to the metre, the other legs
+// untouched in length, and the leg settles on the statics of the system with that leg 1 m
+// shorter (vessel held at the same pose).
+TEST(VesselLockstep, AFairleadWinchHaulsItsLineInToTheStaticsOfTheShorterLeg) {
+  // The chain still rings 58 s after the winch stops: +-30 N of 44 kN (measured).
+  constexpr double kSettledRelTol = 2e-3;
+  const SystemProblem s = fourLegVessel(10.0);
+  DynamicOptions o = options();
+  o.duration = 60.0;
+  VesselLockstep run(s, o);
+  std::string note;
+  const double none = std::nan("");
+  EXPECT_NE(run.winchLine(s.lines[0].name, -0.5, none, note).find("no motion sample yet"), std::string::npos);
+  ASSERT_EQ(run.onSample(0.0, surged(0.0)).outcome, VesselLockstep::Outcome::Started);
+  EXPECT_NE(run.winchLine("nope", -0.5, none, note).find("no line of that name"), std::string::npos);
+  const std::vector<double> L0 = run.lineLengths();
+  ASSERT_EQ(run.winchLine(s.lines[0].name, -0.5, L0[0] - 1.0, note), "");
+  EXPECT_NE(note.find("there at t = 2 s"), std::string::npos) << note;
+  for (int k = 1; k <= 240; ++k)
+    ASSERT_EQ(run.onSample(0.25 * k, surged(0.0)).outcome, VesselLockstep::Outcome::Advanced) << k;
+  const std::vector<double> L1 = run.lineLengths();
+  EXPECT_NEAR(L1[0], L0[0] - 1.0, 1e-9);
+  for (std::size_t i = 1; i < L0.size(); ++i) EXPECT_EQ(L1[i], L0[i]);
+  SystemProblem shorter = s;
+  shorter.lines[0].segments.back().length -= 1.0;
+  const VesselStaticResult st = solveVesselStatic(shorter, surged(0.0));
+  ASSERT_TRUE(st.system.summary.converged);
+  const double want = st.system.lines[0].nodes.back().tension;
+  EXPECT_GT(want, run.dynamics().line(0).nodes.front().tension);  // (a sanity check of the reading)
+  EXPECT_NEAR(run.dynamics().line(0).nodes.back().tension, want, kSettledRelTol * want);
+}
