@@ -220,8 +220,14 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   const double dout = s.dynamics.output_interval > 0.0 ? s.dynamics.output_interval : s.dynamics.dt;
   std::vector<std::vector<double>> rows;
   std::vector<core::TensionPeak> peaks(s.lines.size());
+  // The line a winch pays out (dynamics.winch; none: s.lines.size()): its length, a column.
+  std::size_t winched = s.lines.size();
+  for (std::size_t i = 0; i < s.lines.size(); ++i)
+    if (s.dynamics.winch.given && s.lines[i].name == s.dynamics.winch.line) winched = i;
+  std::vector<double> lengths;
   auto sample = [&]() {
     std::vector<double> r{sim->time()};
+    if (winched < s.lines.size()) lengths.push_back(sim->lineLength(winched));
     const auto pts = sim->points();
     for (std::size_t p = 0; p < pts.size(); ++p)
       if (s.points[p].free()) r.insert(r.end(), {pts[p].x, pts[p].y, pts[p].z});
@@ -274,6 +280,9 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   }
   const std::vector<core::LineEventRecord> events = sim->lineEvents();
   for (const auto& e : events) out << "  event          " << core::lineEventText(e) << "\n";
+  if (!lengths.empty())
+    out << "  winch          " << s.lines[winched].name << " line length " << fmtNum("%.3f", lengths.front())
+        << " m -> " << fmtNum("%.3f", lengths.back()) << " m\n";
   out << "  solver         " << sim->pointIterations() << " point iterations, " << sim->lineSteps() << " line steps\n";
   out << "  wall time      " << fmtNum("%.3g", wall) << " s, real-time factor " << fmtNum("%.3g", sim->time() / wall)
       << "\n";
@@ -287,9 +296,12 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
                      for (const auto& p : s.points)
                        if (p.free()) f << "," << p.name << "_x," << p.name << "_y," << p.name << "_z";
                      for (const auto& l : s.lines) f << "," << l.name << "_top_tension";
+                     if (!lengths.empty()) f << "," << s.lines[winched].name << "_line_length";
                      f << "\n";
-                     for (const auto& r : rows) {
+                     for (std::size_t k = 0; k < rows.size(); ++k) {
+                       const auto& r = rows[k];
                        for (std::size_t c = 0; c < r.size(); ++c) f << (c ? "," : "") << csvNum(r[c]);
+                       if (!lengths.empty()) f << "," << csvNum(lengths[k]);
                        f << "\n";
                      }
                    },

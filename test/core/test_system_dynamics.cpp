@@ -438,3 +438,42 @@ TEST(SystemDynamics, ThreeLegBuoyLosingALegDriftsTowardTheTwoLegEquilibrium) {
   EXPECT_GT(last_x, x2);
   EXPECT_LT(sim.line(1).topTension(), T1_static) << "the buoy moved toward the remaining anchors";
 }
+
+// A winch at leg0's top (dynamics.winch with line:) hauls it in 10 m over 20 s: the buoy moves
+// toward leg0's anchor (+x), stays on the axis (legs 1 and 2 mirror each other), and settles on
+// the statics of the system with leg0 10 m shorter. The other legs keep their length.
+TEST(SystemDynamics, WinchHaulsALegInAndTheBuoySettlesOnTheShorterLegsStatics) {
+  // The buoy swings about the new equilibrium in its slow surge mode (period ~70 s): +5.5 cm at
+  // 60 s, within 5 mm by 200 s (measured). At 60 s, against a 6.2 m move.
+  constexpr double kSettleTol = 0.08;  // [m]
+  constexpr double kMirrorRelTol = 1e-6;
+  SystemProblem shorter = threeLeg();
+  shorter.lines[0].segments.back().length -= 10.0;
+  const SystemStaticResult eq = solveSystemStatic(shorter);
+  ASSERT_TRUE(eq.summary.converged) << eq.summary.message;
+
+  SystemProblem s = threeLeg();
+  s.dynamics.dt = 0.5;
+  s.dynamics.duration = 60.0;
+  s.dynamics.winch.given = true;
+  s.dynamics.winch.line = "leg0";
+  s.dynamics.winch.table = {{0.0, 300.0}, {20.0, 290.0}};
+  ASSERT_EQ(s.validate(), "");
+  SystemDynamics sim(s, s.dynamics);
+  const double x0 = sim.points()[0].x;
+  ASSERT_GT(eq.points[0].x, x0 + 2.0) << "the shorter leg pulls the buoy toward +x";
+  for (int i = 1; i <= 120; ++i) {
+    std::string why;
+    ASSERT_TRUE(sim.advanceTo(0.5 * i, &why)) << why;
+    EXPECT_NEAR(sim.line(1).topTension(), sim.line(2).topTension(), kMirrorRelTol * sim.line(1).topTension());
+  }
+  EXPECT_NEAR(sim.lineLength(0), 290.0, 1e-9);
+  EXPECT_EQ(sim.lineLength(1), 300.0);
+  EXPECT_NEAR(sim.points()[0].x, eq.points[0].x, kSettleTol);
+  EXPECT_NEAR(sim.points()[0].y, 0.0, 1e-6);
+  // A winch naming no line of the file, or none at all, is refused by the system's validation.
+  s.dynamics.winch.line = "leg9";
+  EXPECT_NE(s.validate().find("dynamics.winch.line = leg9: no line of that name"), std::string::npos);
+  s.dynamics.winch.line.clear();
+  EXPECT_NE(s.validate().find("dynamics.winch.line: required"), std::string::npos);
+}

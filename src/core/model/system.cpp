@@ -236,6 +236,24 @@ static std::string validateSystemEvents(const SystemProblem& s) {
   return {};
 }
 
+/// dynamics.winch of a system: at the top of a line of the file (validateWinchOnLine).
+static std::string validateSystemWinch(const SystemProblem& s) {
+  const Winch& w = s.dynamics.winch;
+  if (!w.given) return {};
+  const std::string k = "dynamics.winch";
+  if (w.line.empty()) return k + ".line: required in a system file (the name of the line whose top the winch is at)";
+  for (const SystemLine& l : s.lines) {
+    if (l.name != w.line) continue;
+    double L = 0.0;
+    for (const Segment& g : l.segments) L += g.length;
+    const Segment& top = l.segments.back();
+    double last_body = 0.0;
+    for (const BodyPlacement& b : top.bodies) last_body = std::max(last_body, b.at);
+    return validateWinchOnLine(w, k, L, L - top.length + last_body, top.spacing, s.dynamics.duration);
+  }
+  return k + ".line = " + w.line + ": no line of that name in lines";
+}
+
 std::string SystemProblem::validate() const {
   if (points.empty()) return "points: at least one point is needed";
   if (lines.empty()) return "lines: at least one line is needed";
@@ -247,6 +265,7 @@ std::string SystemProblem::validate() const {
   if (!(e = validateSupports(*this)).empty()) return e;
   if (!(e = validateSizes(*this)).empty()) return e;
   if (!(e = validateSystemEvents(*this)).empty()) return e;
+  if (!(e = validateSystemWinch(*this)).empty()) return e;
   return validateLineProblems(*this);
 }
 

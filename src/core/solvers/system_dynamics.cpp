@@ -83,6 +83,21 @@ struct SystemDynamics::Impl {
     };
   }
 
+  /// dynamics.winch for line `name` (none when it names another line) on a solver whose time 0 is
+  /// system time t0, the line's length L0 there: the program from t0 on.
+  Winch lineWinch(const std::string& name, double L0, double t0) const {
+    if (!opt.winch.given || opt.winch.line != name) return Winch();
+    Winch w = opt.winch;
+    w.line.clear();
+    if (t0 > 0.0 && !w.table.empty()) {
+      const WinchProgram p = opt.winch.program(L0);
+      w.table = {{0.0, p.lengthAt(t0)}};
+      for (const auto& row : opt.winch.table)
+        if (row[0] > t0) w.table.push_back({row[0] - t0, row[1]});
+    }
+    return w;
+  }
+
   /// The dynamic problem of line i of `sys` with its ends at `xyz` (3 per point of `sys`), for a
   /// solver whose time 0 is system time t0: the line's own events (dynamics.events naming it),
   /// their times on its clock; those before t0 are gone.
@@ -97,6 +112,7 @@ struct SystemDynamics::Impl {
       if (e.t >= 0.0) e.t -= t0;
       p.dynamics.events.push_back(e);
     }
+    p.dynamics.winch = lineWinch(sys.lines[i].name, p.totalLength(), t0);
     p.dynamics.top_motion = TopMotion{};
     p.dynamics.top_motion.prescribe_position = true;  // the top follows its point
     if (p.dynamics.duration <= 0.0) p.dynamics.duration = opt.dt;
