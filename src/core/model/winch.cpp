@@ -1,25 +1,11 @@
 #include "mooring_dynamics/core/model/winch.hpp"
 
 #include <algorithm>
-#include <sstream>
+
+#include "mooring_dynamics/core/model/field_error.hpp"
 
 namespace mooring_dynamics {
 namespace core {
-
-namespace {
-std::string bad(const std::string& key, double v, const std::string& constraint) {
-  std::ostringstream os;
-  os.precision(10);
-  os << key << " = " << v << ": " << constraint;
-  return os.str();
-}
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
-}  // namespace
 
 double WinchProgram::lengthAt(double time) const {
   if (t.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -52,22 +38,22 @@ WinchProgram WinchProgram::toward(double t0, double L0, double rate, double targ
 
 std::string Winch::validate(const std::string& key) const {
   const std::string k = key + ".";
-  if (!std::isfinite(rate)) return bad(k + "rate", rate, "must be a finite rate [m/s] (> 0 pays out)");
+  if (!std::isfinite(rate)) return fieldError(k + "rate", rate, "must be a finite rate [m/s] (> 0 pays out)");
   if (rate != 0.0 && !table.empty()) return k + "rate / table: give one of them, not both";
   if (rate == 0.0 && table.empty()) return k + "rate / table: the winch needs a rate [m/s] or a table of [t, length]";
   for (std::size_t i = 0; i < table.size(); ++i) {
     const std::string rk = k + "table[" + std::to_string(i) + "]";
     if (table[i].size() != 2) return rk + ": a row is [t, length] ([s], [m])";
-    if (!(std::isfinite(table[i][0]) && table[i][0] >= 0.0)) return bad(rk + " t", table[i][0], "must be >= 0 [s]");
-    if (!(std::isfinite(table[i][1]) && table[i][1] > 0.0)) return bad(rk + " length", table[i][1], "must be > 0 [m]");
-    if (i > 0 && !(table[i][0] > table[i - 1][0])) return bad(rk + " t", table[i][0], "times must increase");
+    if (!(std::isfinite(table[i][0]) && table[i][0] >= 0.0)) return fieldError(rk + " t", table[i][0], "must be >= 0 [s]");
+    if (!(std::isfinite(table[i][1]) && table[i][1] > 0.0)) return fieldError(rk + " length", table[i][1], "must be > 0 [m]");
+    if (i > 0 && !(table[i][0] > table[i - 1][0])) return fieldError(rk + " t", table[i][0], "times must increase");
   }
   if (!(std::isfinite(min_length) && min_length >= 0.0))
-    return bad(k + "min_length", min_length, "must be >= 0 [m] (0: none)");
+    return fieldError(k + "min_length", min_length, "must be >= 0 [m] (0: none)");
   if (!(std::isfinite(max_length) && max_length >= 0.0))
-    return bad(k + "max_length", max_length, "must be >= 0 [m] (0: none)");
+    return fieldError(k + "max_length", max_length, "must be >= 0 [m] (0: none)");
   if (max_length > 0.0 && !(max_length > min_length))
-    return bad(k + "max_length", max_length, "must be > min_length = " + num(min_length) + " m");
+    return fieldError(k + "max_length", max_length, "must be > min_length = " + fieldNumber(min_length) + " m");
   return {};
 }
 
@@ -102,27 +88,27 @@ std::string validateWinchOnLine(const Winch& w, const std::string& key, double L
   const std::string k = key + ".";
   constexpr double kStartMismatch = 1e-3;  // [m] the table starts from the file's line
   if (!w.table.empty() && std::abs(w.table.front()[1] - L0) > kStartMismatch)
-    return bad(k + "table[0] length", w.table.front()[1],
-               "must be the line's length in the file, " + num(L0) + " m (the run starts from its statics)");
+    return fieldError(k + "table[0] length", w.table.front()[1],
+               "must be the line's length in the file, " + fieldNumber(L0) + " m (the run starts from its statics)");
   const double shortest = top_start + kWinchShortestTopFraction * spacing;
   if (!(L0 >= shortest))
-    return k + "the top segment is " + num(L0 - top_start) + " m long: a winch needs at least " +
-           num(kWinchShortestTopFraction) + " of its spacing, " + num(kWinchShortestTopFraction * spacing) + " m";
+    return key + ": the top segment is " + fieldNumber(L0 - top_start) + " m long: a winch needs at least " +
+           fieldNumber(kWinchShortestTopFraction) + " of its spacing, " + fieldNumber(kWinchShortestTopFraction * spacing) + " m";
   if (w.min_length > 0.0 && L0 < w.min_length)
-    return bad(k + "min_length", w.min_length, "is above the line's length " + num(L0) + " m");
+    return fieldError(k + "min_length", w.min_length, "is above the line's length " + fieldNumber(L0) + " m");
   if (w.max_length > 0.0 && L0 > w.max_length)
-    return bad(k + "max_length", w.max_length, "is below the line's length " + num(L0) + " m");
+    return fieldError(k + "max_length", w.max_length, "is below the line's length " + fieldNumber(L0) + " m");
   const WinchProgram p = w.program(L0);
   const double lo = std::max(w.min_length, shortest);
   const double hi = w.max_length > 0.0 ? w.max_length : std::numeric_limits<double>::infinity();
   const double tc = winchLimitCrossing(p, lo, hi, 0.0, duration);
   if (std::isnan(tc)) return {};
   const double Lc = p.lengthAt(std::min(duration, tc + 1e-9 * std::max(1.0, duration)));
-  if (Lc > hi) return k + "max_length = " + num(hi) + " m: the winch passes it at t = " + num(tc) + " s";
+  if (Lc > hi) return k + "max_length = " + fieldNumber(hi) + " m: the winch passes it at t = " + fieldNumber(tc) + " s";
   if (w.min_length >= shortest)
-    return k + "min_length = " + num(w.min_length) + " m: the winch passes it at t = " + num(tc) + " s";
-  return k + "the winch would take in the whole top segment at t = " + num(tc) + " s (length " + num(shortest) +
-         " m = its start at s = " + num(top_start) + " m + " + num(kWinchShortestTopFraction) +
+    return k + "min_length = " + fieldNumber(w.min_length) + " m: the winch passes it at t = " + fieldNumber(tc) + " s";
+  return key + ": the winch would take in the whole top segment at t = " + fieldNumber(tc) + " s (length " + fieldNumber(shortest) +
+         " m = its start at s = " + fieldNumber(top_start) + " m + " + fieldNumber(kWinchShortestTopFraction) +
          " spacing); it can haul in only the top segment";
 }
 
