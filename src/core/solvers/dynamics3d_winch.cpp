@@ -166,7 +166,7 @@ bool winchBeginStep(DynamicSolver3D::Impl& im, double t_new, std::string& messag
     return false;
   }
   setLength(im, L);
-  w.rate = w.program.rateAt(t_new);
+  w.rate = (L - w.length) / (t_new - im.t);  // the step's mean dL/dt (a table's corner may fall inside it)
   return true;
 }
 
