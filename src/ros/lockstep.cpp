@@ -174,7 +174,7 @@ std::string LockstepDriver::release(core::LineEvent::End end, const std::string&
 }
 
 std::string LockstepDriver::winch(double rate, double target, std::string& note) {
-  if (!threeD()) return "model = 2d: the line node's winch needs model: 3d";
+  if (!threeD()) return "model = 2d: the line node's winch needs model: 3d (a planar line gives the same results there)";
   if (!started_ || !solver_) return "no motion sample yet: the run starts at the first one; command the winch after it";
   return solver_->commandWinch(rate, target, note);
 }

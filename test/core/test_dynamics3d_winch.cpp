@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
 #include "mooring_dynamics/core/solvers/dynamics3d.hpp"
 #include "mooring_dynamics/core/solvers/solvers.hpp"
 #include "mooring_dynamics/core/solvers/statics3d.hpp"
@@ -160,6 +161,13 @@ TEST(Winch, PlanarProblemRunsOnTheThreeDimensionalEquations) {
   EXPECT_NEAR(r.line_length.front(), 85.0, 1e-9);
   EXPECT_NEAR(r.line_length.back(), 95.0, 1e-9);
   for (double y : r.top_y) EXPECT_NEAR(y, 0.0, 1e-9);  // in its plane
+  // The 2-D solver itself refuses the winch rather than ignore it.
+  try {
+    DynamicSolver2D two(p);
+    ADD_FAILURE() << "the 2-D solver took a winch";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("dynamics.winch: the 2-D solver's mesh is fixed"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Winch, CommandsStopAtTheirTargetOrLimitAndRefuseWhatIsOutside) {

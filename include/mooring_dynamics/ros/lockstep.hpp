@@ -81,7 +81,7 @@ class LockstepSolver {
   /// do in `note`; else why not.
   virtual std::string commandWinch(double rate, double target, std::string& note) {
     (void)rate, (void)target, (void)note;
-    return "model = 2d: the line node's winch needs model: 3d";
+    return "model = 2d: the line node's winch needs model: 3d (a planar line gives the same results there)";
   }
   /// The line's unstretched length now [m] and the winch's rate [m/s].
   virtual double lineLength() const { return initialStatic().nodes.back().s; }

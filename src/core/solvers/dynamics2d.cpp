@@ -562,6 +562,12 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   Impl& im = *impl_;
   const std::string err = problem.validate();
   if (!err.empty()) throw std::invalid_argument(err);
+  // Its mesh is fixed: a winch would be ignored. runDynamicModel runs such a problem on the 3-D
+  // equations in its plane.
+  if (problem.dynamics.winch.given)
+    throw std::invalid_argument("dynamics.winch: the 2-D solver's mesh is fixed; a 2-D problem with a winch runs on "
+                                "the 3-D equations in its plane (cable_sim dynamic does so; the line node needs "
+                                "model: 3d)");
   im.problem = problem;
   im.opt = problem.dynamics;
   im.ga = problem.dynamics.scheme;
