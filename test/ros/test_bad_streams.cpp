@@ -179,6 +179,16 @@ class Harness {
     out = b->second;
     return true;
   }
+  /// state(), waiting for it: a vessel's line states follow its wrench, which may answer first.
+  bool waitState(const std::string& line, const ros::Time& stamp, md::CableState& out,
+                 double timeout = kAnswerTimeout) const {
+    const ros::WallTime w0 = ros::WallTime::now();
+    while (ros::ok() && (ros::WallTime::now() - w0).toSec() < timeout) {
+      if (state(line, stamp, out)) return true;
+      ros::WallDuration(0.002).sleep();
+    }
+    return state(line, stamp, out);
+  }
   bool wrench(const ros::Time& stamp, geometry_msgs::WrenchStamped& out) const {
     std::lock_guard<std::mutex> l(mu_);
     const auto b = wrenches_.find(stamp.toNSec());
@@ -742,7 +752,7 @@ void failureKeepsLastGoodState(const std::vector<std::string>& lines, const std:
   for (const auto& l : lines) {
     md::CableState before, failed;
     ASSERT_TRUE(g_h->state(l, good, before)) << l;
-    ASSERT_TRUE(g_h->state(l, m.header.stamp, failed)) << l;
+    ASSERT_TRUE(g_h->waitState(l, m.header.stamp, failed)) << l;
     EXPECT_TRUE(before.converged) << l;
     EXPECT_FALSE(failed.converged) << l << ": the kept state is not the state at this stamp";
     EXPECT_TRUE(sameState(before, failed)) << l << ": the last good state, bit for bit";
@@ -762,7 +772,7 @@ void failureKeepsLastGoodState(const std::vector<std::string>& lines, const std:
   const Diag& a = s.after();
   EXPECT_EQ(s.grew(kept_key), 1) << s.changes();
   md::CableState next;
-  ASSERT_TRUE(g_h->state(lines[0], g_h->now(), next));
+  ASSERT_TRUE(g_h->waitState(lines[0], g_h->now(), next));
   EXPECT_TRUE(next.converged);
   (void)a;
 }
@@ -782,7 +792,7 @@ void repeatedFailuresRestart(const std::vector<std::string>& lines, const std::s
   }
   ASSERT_TRUE(g_h->waitAnswer(last));
   md::CableState st;
-  ASSERT_TRUE(g_h->state(lines[0], last, st));
+  ASSERT_TRUE(g_h->waitState(lines[0], last, st));
   EXPECT_TRUE(st.converged) << "restarted from statics at the sample";
   // Back to the gentle track: 5 m back in 0.1 s fails again; the third time restarts again.
   for (int i = 0; i < 3; ++i) g_h->send(g_h->good(g_h->next()));

@@ -38,6 +38,7 @@
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/ReleaseLine.h"
+#include "mooring_dynamics/Winch.h"
 #include "mooring_dynamics/VesselStatics.h"
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
@@ -207,6 +208,7 @@ struct Listener {
   std::map<uint64_t, geometry_msgs::WrenchStamped> body, world;
   std::map<uint64_t, double> top[3];  ///< each line's top tension (CableState), by stamp
   std::vector<std::string> events[3];  ///< each line's events (CableState), of its last state
+  std::map<uint64_t, double> length[3];  ///< each line's length (CableState line_length), by stamp
   ros::Subscriber s1, s2;
   std::vector<ros::Subscriber> lines;
   Listener() {
@@ -216,6 +218,7 @@ struct Listener {
           g_node + "/lines/" + kLineNames[i] + "/cable_state", 1000, [this, i](const mooring_dynamics::CableState::ConstPtr& m) {
             if (!m->tension.empty()) top[i][m->header.stamp.toNSec()] = m->tension.back();
             events[i] = m->events;
+            length[i][m->header.stamp.toNSec()] = m->line_length;
           }));
     s1 = nh.subscribe<geometry_msgs::WrenchStamped>(g_node + "/wrench", 1000, [this](const geometry_msgs::WrenchStamped::ConstPtr& m) {
       body[m->header.stamp.toNSec()] = *m;
@@ -503,9 +506,10 @@ TEST(VesselNode, SolveStaticService) {
   EXPECT_NE(bad2.response.message.find("offset_dof"), std::string::npos) << bad2.response.message;
 }
 
-// ~release (issue 21): the bow line let go at its fairlead pulls nothing from the next sample on;
-// the event is on its CableState and in /diagnostics; bad requests name the field. Runs last
-// (it changes the node's lines for good).
+// ~winch and ~release (issue 21): the port quarter line's winch hauls it in at 0.5 m/s, its
+// CableState's line_length following; the bow line let go at its fairlead pulls nothing from the
+// next sample on; the event is on its CableState and in /diagnostics; bad requests name the
+// field. Runs last (it changes the node's lines for good).
 TEST(VesselNode, ReleaseServiceLetsALineGo) {
   if (g_mode != "live" || g_source != "pose") GTEST_SKIP() << "live PoseStamped only";
   Listener& l = *g_listener;
@@ -537,6 +541,25 @@ TEST(VesselNode, ReleaseServiceLetsALineGo) {
   EXPECT_FALSE(bad.response.success);
   EXPECT_NE(bad.response.message.find("end = \"middle\": must be top or anchor"), std::string::npos) << bad.response.message;
 
+  const std::string winch_srv = g_node + "/winch";
+  ASSERT_TRUE(ros::service::waitForService(winch_srv, ros::Duration(20.0)));
+  mooring_dynamics::Winch wbad;
+  wbad.request.line = "mast";
+  wbad.request.rate = 0.5;
+  ASSERT_TRUE(ros::service::call(winch_srv, wbad));
+  EXPECT_FALSE(wbad.response.success);
+  EXPECT_NE(wbad.response.message.find("line = mast: no line of that name"), std::string::npos) << wbad.response.message;
+  mooring_dynamics::Winch win;
+  win.request.line = "port_quarter";
+  win.request.rate = -0.5;
+  ASSERT_TRUE(ros::service::call(winch_srv, win));
+  ASSERT_TRUE(win.response.success) << win.response.message;
+  EXPECT_NE(win.response.message.find("hauling in at 0.5 m/s"), std::string::npos) << win.response.message;
+  const double L0 = win.response.line_length;
+  ASSERT_GT(L0, 10.0);
+  ASSERT_FALSE(l.body.empty());
+  const uint64_t commanded = l.body.rbegin()->first;  // the node's last sample before the command
+
   mooring_dynamics::ReleaseLine rel;
   rel.request.line = "bow";
   rel.request.end = "top";
@@ -565,6 +588,11 @@ TEST(VesselNode, ReleaseServiceLetsALineGo) {
   // Free end: the internal force at the top is zero to the Newton tolerance (1e-6 of the scale).
   EXPECT_LT(std::abs(l.top[0][last]), 1e-3 * l.top[1][last]) << "bow top tension after the release";
   EXPECT_GT(l.top[1][last], 1000.0);
+  // The winch ran from the last sample before the command to the last one (solver time = stamps).
+  l.spinUntil([&] { return l.length[1].count(last) > 0; }, 10.0);
+  ASSERT_TRUE(l.length[1].count(last));
+  EXPECT_NEAR(l.length[1][last], L0 - 0.5 * 1e-9 * static_cast<double>(last - commanded), 1e-6);
+  EXPECT_EQ(l.length[2][last], l.length[2].begin()->second) << "the other quarter line keeps its length";
   ASSERT_EQ(l.events[0].size(), 1u);
   EXPECT_NE(l.events[0][0].find("released top"), std::string::npos) << l.events[0][0];
   EXPECT_TRUE(l.events[1].empty());
