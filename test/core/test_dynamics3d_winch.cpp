@@ -233,3 +233,21 @@ TEST(Winch, AProgramPastItsLimitStopsTheRunAndSaysWhy) {
 }
 
 }  // namespace
+
+namespace {
+// Two threads split the line at the Newton matrix's meeting node, which moves as nodes come and
+// go: the results are the same bits as on one thread (docs/performance.md, threads).
+TEST(Winch, SameBitsOnOneAndTwoThreads) {
+  const std::string yaml = lowering("{table: [[0, 50], [30, 80], [60, 55]]}", 60);
+  Problem one = loadProblemFromString(yaml), two = one;
+  two.dynamics.threads = 2;
+  const DynamicSeries a = runDynamic3D(one), b = runDynamic3D(two);
+  ASSERT_TRUE(a.completed && b.completed) << a.message << b.message;
+  ASSERT_EQ(a.t.size(), b.t.size());
+  for (std::size_t k = 0; k < a.t.size(); ++k) {
+    EXPECT_EQ(a.top_tension[k], b.top_tension[k]) << a.t[k];
+    EXPECT_EQ(a.anchor_tension[k], b.anchor_tension[k]) << a.t[k];
+    EXPECT_EQ(a.line_length[k], b.line_length[k]) << a.t[k];
+  }
+}
+}  // namespace
