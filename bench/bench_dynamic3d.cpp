@@ -16,6 +16,9 @@
 //
 // BM_STether3DWavesRealTimeFactor: config/s_tether.yaml in the 3-D model, first 100 s.
 //
+// BM_WinchLoweringRealTimeFactor: config/winch_lowering.yaml (an instrument paid out 50 -> 150 m
+// and hauled in to 60 m, 240 s): the winch's nodes added and taken out, 11 to 31 nodes.
+//
 // The whole-run benchmarks count real_time_factor, newton_iters and jacobians per run.
 #include <benchmark/benchmark.h>
 
@@ -148,6 +151,17 @@ BENCHMARK(BM_Dynamic3DStepCost)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(800)
     ->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_ChainMooring3DRealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_TowedArrayCase1RealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
+/// An instrument lowered and recovered by a winch (config/winch_lowering.yaml, 240 s at 0.5 s):
+/// the cost of the winch's remeshing (nodes added and taken out, the wave cache and the previous
+/// level's rows rebuilt each time) on a short line.
+void BM_WinchLoweringRealTimeFactor(benchmark::State& state) {
+  md::Problem problem;
+  if (!mooring_dynamics::bench::loadShippedConfig(state, "winch_lowering.yaml", problem)) return;
+  timeWholeRuns(state, problem);
+}
+
 BENCHMARK(BM_STether3DWavesRealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
+
+BENCHMARK(BM_WinchLoweringRealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(5);
 
 BENCHMARK_MAIN();
