@@ -448,6 +448,10 @@ bool LockstepNode::onWinch(Winch::Request& req, Winch::Response& res) {
     res.message = "line = " + req.line + ": this node runs one line, " + problem_.name + " (or leave line empty)";
     return true;
   }
+  if (!(req.target_length >= 0.0)) {  // NaN too
+    res.message = "target_length = " + formatNumber(req.target_length) + ": must be > 0 [m], or 0 for none";
+    return true;
+  }
   std::string note;
   const double target = req.target_length > 0.0 ? req.target_length : std::numeric_limits<double>::quiet_NaN();
   const std::string err = driver_->winch(req.rate, target, note);

@@ -476,6 +476,11 @@ bool VesselNode::onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res
 }
 
 bool VesselNode::onWinch(Winch::Request& req, Winch::Response& res) {
+  if (!(req.target_length >= 0.0)) {  // NaN too
+    res.success = false;
+    res.message = "target_length = " + formatNumber(req.target_length) + ": must be > 0 [m], or 0 for none";
+    return true;
+  }
   std::string note;
   const double target = req.target_length > 0.0 ? req.target_length : std::numeric_limits<double>::quiet_NaN();
   const std::string err = lockstep_->winchLine(req.line, req.rate, target, note);

@@ -33,6 +33,12 @@ constexpr double kLoweringRelTol = 1e-3;
 constexpr double kRestRelTol = 1e-4;
 // Mesh bookkeeping: the intervals below the top keep the spacing to rounding.
 constexpr double kSpacingTol = 1e-9;  // [m]
+// A length read back: sums and differences of the program's round values, to rounding.
+constexpr double kLengthTol = 1e-9;  // [m]
+// The program's rate read back (a difference of lengths over a time), to rounding.
+constexpr double kRateTol = 1e-12;  // [m/s]
+// A run stopped at a limit: the last step lands on it up to the rounding of t_end - t.
+constexpr double kStopTol = 1e-6;  // [m]
 // Settling on the static shape: the line still sways after the winch's stop (a lightly damped
 // mode in still water): 8 mm at 100 s, 4 mm at 200 s after a 10 m payout (measured). 1.5 cm
 // still catches a top that drifted (2.6 cm without the position feedback).
@@ -89,11 +95,11 @@ TEST(Winch, LoweredAndHauledInAtAConstantRateCarriesTheClosedForm) {
     const double L = s.lineLength();
     // Away from the rate's jumps (the line's elastic and the clump's transients die in ~20 s).
     if (t >= 40.0 && t <= 100.0) {
-      EXPECT_NEAR(L, 50.0 + t, 1e-9);
+      EXPECT_NEAR(L, 50.0 + t, kLengthTol);
       worst_out = std::max(worst_out, std::abs(now.nodes.back().tension / loweringTension(L, 1.0) - 1.0));
     }
     if (t >= 140.0 && t <= 200.0) {
-      EXPECT_NEAR(L, 150.0 - (t - 110.0), 1e-9);
+      EXPECT_NEAR(L, 150.0 - (t - 110.0), kLengthTol);
       worst_in = std::max(worst_in, std::abs(now.nodes.back().tension / loweringTension(L, -1.0) - 1.0));
     }
     expectWinchMesh(s, 5.0);
@@ -102,10 +108,10 @@ TEST(Winch, LoweredAndHauledInAtAConstantRateCarriesTheClosedForm) {
   EXPECT_LT(worst_in, kLoweringRelTol);
   // At rest: the top holds the clump and w L of the 60 m left, the clump its wet weight.
   const StaticResult rest = s.snapshot();
-  EXPECT_NEAR(s.lineLength(), 60.0, 1e-9);
+  EXPECT_NEAR(s.lineLength(), 60.0, kLengthTol);
   EXPECT_NEAR(rest.nodes.back().tension, 7.0 * 60.0 + 1500.0, kRestRelTol * (7.0 * 60.0 + 1500.0));
   EXPECT_NEAR(rest.nodes.back().tension - rest.nodes.front().tension, 7.0 * 60.0, kRestRelTol * 1920.0);
-  EXPECT_NEAR(s.winchRate(), 0.0, 1e-12);
+  EXPECT_NEAR(s.winchRate(), 0.0, kRateTol);
 }
 
 /// A suspended rope from a mid-water anchor to a fixed top: 85 m (spacing 1 m) or `L0`.
@@ -158,9 +164,11 @@ TEST(Winch, PlanarProblemRunsOnTheThreeDimensionalEquations) {
   const DynamicSeries r = runDynamicModel(p);
   ASSERT_TRUE(r.completed) << r.message;
   ASSERT_EQ(r.line_length.size(), r.t.size());
-  EXPECT_NEAR(r.line_length.front(), 85.0, 1e-9);
-  EXPECT_NEAR(r.line_length.back(), 95.0, 1e-9);
-  for (double y : r.top_y) EXPECT_NEAR(y, 0.0, 1e-9);  // in its plane
+  EXPECT_NEAR(r.line_length.front(), 85.0, kLengthTol);
+  EXPECT_NEAR(r.line_length.back(), 95.0, kLengthTol);
+  // In its plane: nothing moves it off but the rounding of the frames' rotations (5.5e-12 m measured).
+  constexpr double kPlaneTol = 1e-9;  // [m]
+  for (double y : r.top_y) EXPECT_NEAR(y, 0.0, kPlaneTol);
   // The 2-D solver itself refuses the winch rather than ignore it.
   try {
     DynamicSolver2D two(p);
@@ -177,18 +185,18 @@ TEST(Winch, CommandsStopAtTheirTargetOrLimitAndRefuseWhatIsOutside) {
   const std::string note = s.commandWinch(0.5, kNaN);
   EXPECT_NE(note.find("stops at max_length 60 m at t = 20 s"), std::string::npos) << note;
   ASSERT_TRUE(s.advanceTo(30.0).ok);
-  EXPECT_NEAR(s.lineLength(), 60.0, 1e-9);
+  EXPECT_NEAR(s.lineLength(), 60.0, kLengthTol);
   EXPECT_EQ(s.winchRate(), 0.0);
   // To a target at a speed; haul-in to the top segment's shortest is refused below it.
   EXPECT_NE(s.commandWinch(-1.0, 55.0).find("there at t = 35 s"), std::string::npos);
-  EXPECT_NEAR(s.winchRate(), -1.0, 1e-12);
+  EXPECT_NEAR(s.winchRate(), -1.0, kRateTol);
   ASSERT_TRUE(s.advanceTo(40.0).ok);
-  EXPECT_NEAR(s.lineLength(), 55.0, 1e-9);
+  EXPECT_NEAR(s.lineLength(), 55.0, kLengthTol);
   EXPECT_THROW(s.commandWinch(1.0, 61.0), std::invalid_argument);  // above max_length
   EXPECT_THROW(s.commandWinch(1.0, 2.0), std::invalid_argument);   // below the shortest top segment
   EXPECT_THROW(s.commandWinch(kNaN, kNaN), std::invalid_argument);
   EXPECT_THROW(s.commandWinch(0.0, 50.0), std::invalid_argument);  // a target needs a speed
-  EXPECT_NEAR(s.lineLength(), 55.0, 1e-9);                        // nothing changed
+  EXPECT_NEAR(s.lineLength(), 55.0, kLengthTol);                        // nothing changed
   try {
     s.commandWinch(1.0, 61.0);
   } catch (const std::invalid_argument& e) {
@@ -209,7 +217,7 @@ TEST(Winch, SaveAndRestoreUndoAddedNodes) {
   ASSERT_GT(first.nodes.size(), before);
   s.restore(*saved);
   EXPECT_EQ(s.nodeArclengths().size(), before);
-  EXPECT_NEAR(s.lineLength(), 53.0, 1e-9);
+  EXPECT_NEAR(s.lineLength(), 53.0, kLengthTol);
   ASSERT_TRUE(s.advanceTo(12.0).ok);
   const StaticResult again = s.snapshot();
   ASSERT_EQ(again.nodes.size(), first.nodes.size());
@@ -220,6 +228,29 @@ TEST(Winch, SaveAndRestoreUndoAddedNodes) {
   }
 }
 
+// A state saved before any winch program, restored after a command added nodes: the mesh, the
+// program and the length go back with the state (the line as it was, no winch running).
+TEST(Winch, RestoreToBeforeTheFirstCommandUndoesIt) {
+  Problem p = loadProblemFromString(lowering("{rate: 1.0}", 100));
+  p.dynamics.winch = Winch();  // no program in the file: the winch waits for a command
+  DynamicSolver3D s(p);
+  ASSERT_TRUE(s.advanceTo(2.0).ok);
+  const auto saved = s.save();
+  const StaticResult before = s.snapshot();
+  s.commandWinch(1.0, kNaN);
+  ASSERT_TRUE(s.advanceTo(14.0).ok);
+  ASSERT_GT(s.nodeArclengths().size(), before.nodes.size());
+  s.restore(*saved);
+  EXPECT_NEAR(s.lineLength(), 50.0, kLengthTol);
+  EXPECT_EQ(s.winchRate(), 0.0);
+  const StaticResult after = s.snapshot();
+  ASSERT_EQ(after.nodes.size(), before.nodes.size());
+  for (std::size_t j = 0; j < before.nodes.size(); ++j) EXPECT_EQ(after.nodes[j].tension, before.nodes[j].tension);
+  ASSERT_TRUE(s.advanceTo(14.0).ok);  // held: the line as at the start
+  EXPECT_NEAR(s.lineLength(), 50.0, kLengthTol);
+  EXPECT_EQ(s.nodeArclengths().size(), before.nodes.size());
+}
+
 TEST(Winch, AProgramPastItsLimitStopsTheRunAndSaysWhy) {
   // The file's checks cover [0, duration]; a run driven past it (a lockstep node) stops there.
   const Problem p = loadProblemFromString(lowering("{rate: 1.0, max_length: 70}", 20));
@@ -228,8 +259,8 @@ TEST(Winch, AProgramPastItsLimitStopsTheRunAndSaysWhy) {
   const StepReport r = s.advanceTo(25.0);
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.message.find("passes max_length = 70 m"), std::string::npos) << r.message;
-  EXPECT_NEAR(s.time(), 20.0, 1e-9);
-  EXPECT_NEAR(s.lineLength(), 70.0, 1e-6);
+  EXPECT_NEAR(s.time(), 20.0, kLengthTol);  // [s] as exact
+  EXPECT_NEAR(s.lineLength(), 70.0, kStopTol);
 }
 
 }  // namespace

@@ -125,7 +125,14 @@ TEST(WinchInput, BadWinchesNameTheFieldAndTheConstraint) {
   const std::string free_end = "free_end: {body: clump}";
   anchored.replace(anchored.find(free_end), free_end.size(), "anchor: {x: 0, y: 0, z: -1000}");
   const std::string force = errorOf(anchored);
-  EXPECT_NE(force.find("motion is prescribed"), std::string::npos) << force;
+  EXPECT_NE(force.find("dynamics.winch: top: force: the winch sits at a top whose motion is prescribed"),
+            std::string::npos)
+      << force;
+  // Nor does a position top driven by a force table.
+  std::string table = lineWith("{rate: 0.5}");
+  table.replace(table.find("winch:"), 6, "top_motion: {type: force_table, table: [[0, 0, 0, 0]]}, winch:");
+  const std::string ft = errorOf(table);
+  EXPECT_NE(ft.find("dynamics.top_motion.type = force_table"), std::string::npos) << ft;
 }
 
 }  // namespace

@@ -306,6 +306,10 @@ TEST(Lockstep3D, WinchServicePaysOutToTheTarget) {
   EXPECT_FALSE(bad.response.success);
   EXPECT_NE(bad.response.message.find("target length = 0.5 m: outside"), std::string::npos) << bad.response.message;
   EXPECT_NEAR(bad.response.line_length, L0, 1e-12);
+  bad.request.target_length = -5.0;  // not "none": refused with the field named
+  ASSERT_TRUE(cl.call(bad));
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("target_length = -5: must be > 0"), std::string::npos) << bad.response.message;
 
   mooring_dynamics::Winch w;
   w.request.rate = 1.0;

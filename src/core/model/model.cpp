@@ -586,10 +586,18 @@ std::string validateWinch(const Problem& p) {
   const std::string k = "dynamics.winch";
   if (!w.line.empty()) return k + ".line = " + w.line + ": only a system file names the line of a winch";
   const bool free_below = p.lower_end == Problem::LowerEnd::Free;
+  const char* top_kind = p.top.type == TopBoundary::Type::Force ? "force"
+                    : p.top.type == TopBoundary::Type::Body ? "body"
+                    : p.top.type == TopBoundary::Type::Buoy ? "buoy"
+                                                            : "position";
   if (p.top.type == TopBoundary::Type::Force || p.top.type == TopBoundary::Type::Body ||
       (p.top.type == TopBoundary::Type::Buoy && free_below))
-    return k + ": the winch sits at a top whose motion is prescribed (top: position, or a surface buoy over an "
-               "anchor); this top's position follows from its forces";
+    return k + ": top: " + top_kind + (free_below ? " over a free lower end" : "") +
+           ": the winch sits at a top whose motion is prescribed (top: position, or a surface buoy over an "
+           "anchor); this top's position follows from its forces";
+  if (p.dynamics.top_motion.type == TopMotion::Type::ForceTable)
+    return k + ": dynamics.top_motion.type = force_table: the winch sits at a top whose motion is prescribed; a "
+               "force table leaves the top's position to its forces";
   double top_start = 0.0;
   for (std::size_t i = 0; i + 1 < p.segments.size(); ++i) top_start += p.segments[i].length;
   const Segment& top = p.segments.back();

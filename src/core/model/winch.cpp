@@ -39,7 +39,9 @@ WinchProgram WinchProgram::toward(double t0, double L0, double rate, double targ
 std::string Winch::validate(const std::string& key) const {
   const std::string k = key + ".";
   if (!std::isfinite(rate)) return fieldError(k + "rate", rate, "must be a finite rate [m/s] (> 0 pays out)");
-  if (rate != 0.0 && !table.empty()) return k + "rate / table: give one of them, not both";
+  if (rate != 0.0 && !table.empty())
+    return k + "rate = " + fieldNumber(rate) + " and " + k + "table (" + std::to_string(table.size()) +
+           " rows): give one of them, not both";
   if (rate == 0.0 && table.empty()) return k + "rate / table: the winch needs a rate [m/s] or a table of [t, length]";
   for (std::size_t i = 0; i < table.size(); ++i) {
     const std::string rk = k + "table[" + std::to_string(i) + "]";
@@ -92,7 +94,8 @@ std::string validateWinchOnLine(const Winch& w, const std::string& key, double L
                "must be the line's length in the file, " + fieldNumber(L0) + " m (the run starts from its statics)");
   const double shortest = top_start + kWinchShortestTopFraction * spacing;
   if (!(L0 >= shortest))
-    return key + ": the top segment is " + fieldNumber(L0 - top_start) + " m long: a winch needs at least " +
+    return key + ": the top segment gives the winch " + fieldNumber(L0 - top_start) +
+           " m (above its start or its last inline body): it needs at least " +
            fieldNumber(kWinchShortestTopFraction) + " of its spacing, " + fieldNumber(kWinchShortestTopFraction * spacing) + " m";
   if (w.min_length > 0.0 && L0 < w.min_length)
     return fieldError(k + "min_length", w.min_length, "is above the line's length " + fieldNumber(L0) + " m");

@@ -607,12 +607,7 @@ struct DynamicSolver3D::Saved {
   int parted = -1;
   double last_dt = 0.0;
   Totals totals;
-  // The winch (saved when it runs): the mesh it changes, its program and length.
-  bool winch = false;
-  std::vector<MeshNode> nodes;
-  std::vector<MeshInterval> intervals;
-  WinchProgram program;
-  double length = 0.0, top_length = 0.0;
+  WinchSaved winch;  ///< the mesh a winch changes, its program and length
 };
 
 std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
@@ -633,14 +628,7 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->parted = im.parted;
   s->last_dt = im.last_dt;
   s->totals = im.totals;
-  if (im.winch.active()) {
-    s->winch = true;
-    s->nodes = im.mesh.nodes;
-    s->intervals = im.mesh.intervals;
-    s->program = im.winch.program;
-    s->length = im.winch.length;
-    s->top_length = im.problem.segments.back().length;
-  }
+  s->winch = winchSave(im);
   return s;
 }
 
@@ -664,19 +652,7 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.upper->setState(s.upper_state);
   im.last_dt = s.last_dt;
   im.totals = s.totals;
-  if (s.winch) {
-    const bool resized = s.nodes.size() != im.mesh.nodes.size();
-    im.mesh.nodes = s.nodes;
-    im.mesh.intervals = s.intervals;
-    im.winch.program = s.program;
-    im.winch.length = s.length;
-    im.winch.rate = 0.0;
-    im.problem.segments.back().length = s.top_length;
-    if (resized) {
-      im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size(), true);
-      rowsChanged(im);
-    }
-  }
+  winchRestore(im, s.winch);
   // A kept factorization (modified Newton) stays: it is still a Jacobian of this step size.
 }
 

@@ -38,7 +38,18 @@ struct WinchState {
   double length = 0.0;     ///< the line's length at the accepted time [m]
   double rate = 0.0;       ///< dL/dt of the step being taken [m/s] (0 between steps, or none)
   bool used = false;       ///< a program was set: the top holds its position by feedback from then on
+  Mesh initial_mesh;       ///< the mesh before any program (what a state saved then had)
+  double initial_top_length = 0.0;  ///< the top segment's length then [m]
   bool active() const { return able && !program.empty(); }
+};
+
+/// What a saved state (DynamicSolver3D::save) keeps of the winch: after a program was set, the
+/// mesh it changes, the program and the length; before, nothing (the mesh was the initial one).
+struct WinchSaved {
+  bool used = false;
+  Mesh mesh;
+  WinchProgram program;
+  double length = 0.0, top_length = 0.0;
 };
 
 struct DynamicSolver3D::Impl {
@@ -151,6 +162,10 @@ void winchUndoStep(DynamicSolver3D::Impl& im);
 /// After an accepted step: split the top interval where it has grown past 1.5 spacings, merge it
 /// into the one below where it has shrunk under half of one; returns whether nodes changed.
 bool winchRemesh(DynamicSolver3D::Impl& im);
+/// The winch's part of save() and restore(): a restore puts back the mesh (and the arrays'
+/// caches for its node count) that go with the saved Y.
+WinchSaved winchSave(const DynamicSolver3D::Impl& im);
+void winchRestore(DynamicSolver3D::Impl& im, const WinchSaved& s);
 
 }  // namespace core
 }  // namespace mooring_dynamics

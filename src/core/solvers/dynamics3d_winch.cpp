@@ -143,8 +143,44 @@ void winchSetUp(DynamicSolver3D::Impl& im) {
   w.lo = std::max(w.min_length, w.shortest);
   w.hi = w.max_length > 0.0 ? w.max_length : std::numeric_limits<double>::infinity();
   w.length = L;
+  w.initial_mesh = im.mesh;
+  w.initial_top_length = top.length;
   if (f.given) w.program = f.program(L);
   w.used = f.given;
+}
+
+WinchSaved winchSave(const DynamicSolver3D::Impl& im) {
+  WinchSaved s;
+  s.used = im.winch.used;
+  if (!s.used) return s;  // nothing changed the mesh yet
+  s.mesh = im.mesh;
+  s.program = im.winch.program;
+  s.length = im.winch.length;
+  s.top_length = im.problem.segments.back().length;
+  return s;
+}
+
+void winchRestore(DynamicSolver3D::Impl& im, const WinchSaved& s) {
+  WinchState& w = im.winch;
+  if (!s.used && !w.used) return;  // the mesh never changed in between
+  const std::size_t before = im.mesh.nodes.size();
+  if (s.used) {
+    im.mesh = s.mesh;
+    w.program = s.program;
+    w.length = s.length;
+    im.problem.segments.back().length = s.top_length;
+  } else {  // saved before any program: the initial mesh and length
+    im.mesh = w.initial_mesh;
+    w.program = WinchProgram();
+    w.length = im.mesh.nodes.back().s;
+    im.problem.segments.back().length = w.initial_top_length;
+  }
+  w.used = s.used;
+  w.rate = 0.0;
+  if (im.mesh.nodes.size() != before) {
+    im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size(), true);
+    rowsChanged(im);
+  }
 }
 
 bool winchBeginStep(DynamicSolver3D::Impl& im, double t_new, std::string& message) {
