@@ -598,15 +598,25 @@ std::string validateWinch(const Problem& p) {
   if (p.dynamics.top_motion.type == TopMotion::Type::ForceTable)
     return k + ": dynamics.top_motion.type = force_table: the winch sits at a top whose motion is prescribed; a "
                "force table leaves the top's position to its forces";
-  double top_start = 0.0;
-  for (std::size_t i = 0; i + 1 < p.segments.size(); ++i) top_start += p.segments[i].length;
-  const Segment& top = p.segments.back();
-  double last_body = 0.0;  // the winch takes in the line above the top segment's last body only
-  for (const BodyPlacement& b : top.bodies) last_body = std::max(last_body, b.at);
-  return validateWinchOnLine(w, k, p.totalLength(), top_start + last_body, top.spacing, p.dynamics.duration);
+  return validateWinchOnSegments(w, k, p.segments, p.dynamics.duration);
 }
 
 }  // namespace
+
+double winchBase(const std::vector<Segment>& segments) {
+  double base = 0.0;
+  for (std::size_t i = 0; i + 1 < segments.size(); ++i) base += segments[i].length;
+  double last_body = 0.0;
+  for (const BodyPlacement& b : segments.back().bodies) last_body = std::max(last_body, b.at);
+  return base + last_body;
+}
+
+std::string validateWinchOnSegments(const Winch& w, const std::string& key, const std::vector<Segment>& segments,
+                                    double duration) {
+  double L = 0.0;
+  for (const Segment& g : segments) L += g.length;
+  return validateWinchOnLine(w, key, L, winchBase(segments), segments.back().spacing, duration);
+}
 
 std::string validateEventOnLine(const LineEvent& ev, const std::string& key, const std::string& line,
                                 const std::vector<Segment>& segments, const std::vector<Material>& materials,

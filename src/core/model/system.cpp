@@ -242,15 +242,8 @@ static std::string validateSystemWinch(const SystemProblem& s) {
   if (!w.given) return {};
   const std::string k = "dynamics.winch";
   if (w.line.empty()) return k + ".line: required in a system file (the name of the line whose top the winch is at)";
-  for (const SystemLine& l : s.lines) {
-    if (l.name != w.line) continue;
-    double L = 0.0;
-    for (const Segment& g : l.segments) L += g.length;
-    const Segment& top = l.segments.back();
-    double last_body = 0.0;
-    for (const BodyPlacement& b : top.bodies) last_body = std::max(last_body, b.at);
-    return validateWinchOnLine(w, k, L, L - top.length + last_body, top.spacing, s.dynamics.duration);
-  }
+  for (const SystemLine& l : s.lines)
+    if (l.name == w.line) return validateWinchOnSegments(w, k, l.segments, s.dynamics.duration);
   return k + ".line = " + w.line + ": no line of that name in lines";
 }
 

@@ -130,11 +130,9 @@ void winchSetUp(DynamicSolver3D::Impl& im) {
            im.nodes() >= 2 && im.mesh.intervals.back().h > 0.0;
   if (!w.able) return;
   const Segment& top = p.segments.back();
-  double last_body = 0.0;
-  for (const BodyPlacement& b : top.bodies) last_body = std::max(last_body, b.at);
   const double L = im.mesh.nodes.back().s;
   w.top_start = L - top.length;
-  w.base_s = w.top_start + last_body;
+  w.base_s = winchBase(p.segments);
   w.shortest = w.base_s + kWinchShortestTopFraction * top.spacing;
   w.spacing = im.mesh.intervals.back().h;
   const Winch& f = p.dynamics.winch;

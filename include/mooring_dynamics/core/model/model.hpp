@@ -328,6 +328,14 @@ struct Problem {
 /// The checks of one line event against its line (dynamics.events[i], `key` its key): `s`
 /// within the line, an `mbl` to break at, an anchor that is not free already. `line` names the
 /// line in messages ("the line", "line leg_e"). Empty when valid.
+/// Where the part of a line a winch can take in starts [m from the lower end]: the top segment's
+/// start, or its last inline body.
+double winchBase(const std::vector<Segment>& segments);
+/// The checks of a winch against the line `segments` (validateWinchOnLine with the line's length,
+/// winchBase and the top segment's spacing). Empty when valid.
+std::string validateWinchOnSegments(const Winch& w, const std::string& key, const std::vector<Segment>& segments,
+                                    double duration);
+
 std::string validateEventOnLine(const LineEvent& ev, const std::string& key, const std::string& line,
                                 const std::vector<Segment>& segments, const std::vector<Material>& materials,
                                 bool lower_end_free);
