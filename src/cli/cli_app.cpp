@@ -10,6 +10,7 @@
 // cmd_dynamic.cpp, cmd_plot.cpp).
 #include "cli_app.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -145,6 +146,7 @@ ParsedArgs parseOptions(int argc, const char* const* argv, int first, const std:
       if (i + 1 >= argc) throw UsageError("option '" + shown + "' needs a value " + spec->metavar);
       p.values[name] = argv[++i];
     }
+    p.all_values[name].push_back(p.values[name]);
     p.flags.insert(name);
   }
   return p;
@@ -207,12 +209,16 @@ void printMainHelp(std::ostream& o) {
     << "Offline solver for ocean cables (moorings, tethers, towed arrays) with the method of\n"
        "Gobat & Grosenbaugh (WHOI Cable). Problem files are YAML, see docs/problem_format.md.\n\n"
        "Commands:\n";
+  std::size_t width = 12;  // the summaries' column: two spaces, the longest name, two spaces
+  for (const auto& c : commands()) width = std::max(width, std::string(c.name).size() + 4);
   for (const auto& c : commands()) {
     std::string left = std::string("  ") + c.name;
-    left.resize(12, ' ');
+    left.resize(width, ' ');
     o << left << c.summary << "\n";
   }
-  o << "  help      help on a command, e.g. '" << kProg << " help static'\n\n"
+  std::string help_left = "  help";
+  help_left.resize(width, ' ');
+  o << help_left << "help on a command, e.g. '" << kProg << " help static'\n\n"
     << "Run '" << kProg << " <command> --help' for the options of a command.\n\n";
   printExitCodes(o);
 }
@@ -327,6 +333,43 @@ const std::vector<Command>& commands() {
            {"help", 'h', nullptr, "show this help"},
        },
        &runSweep},
+      {"storm-motion",
+       "--hs H --tp T --out FILE.csv [--gamma G] [--heading DEG] [--seed N] [--duration S] [--dt S] [--yaw DEG] "
+       "[--offset M] [--offset-heading DEG] [--drift M] [--drift-period S] [--ramp S] [--point X,Y,Z ...]",
+       "vessel motion table of a moored vessel in an irregular sea",
+       "Write a vessel motion table (poses and body twists, the 14 columns of vessel.motion_table:\n"
+       "t,x,y,z,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz) of a vessel in a long-crested JONSWAP sea, from an ASSUMED\n"
+       "simple response model, not an RAO model: heave follows the surface elevation at the origin, pitch\n"
+       "and roll a fraction of the wave slope along and across the hull, the heading is fixed, and the\n"
+       "origin sits at a steady offset with a slow sinusoidal drift along it. All motion is ramped in\n"
+       "from the still pose (origin (0, 0, 0), heading --yaw) at t = 0, with a zero twist, so that a moored\n"
+       "run starts from the statics at that pose. Frames: world x east, y north, z up (REP 103);\n"
+       "directions in degrees counterclockwise from +x; body x forward, y left, z up; the twist in body\n"
+       "axes. Prints the heave std, the pitch and roll std and largest values (after the ramp) and the\n"
+       "largest vertical speed of each --point. See docs/design_analysis.md, \"Storm motion tables\".",
+       {
+           {"hs", 0, "H", "significant wave height [m] (required)"},
+           {"tp", 0, "T", "peak period [s] (required)"},
+           {"gamma", 0, "G", "JONSWAP peak enhancement, >= 1 (default 3.3)"},
+           {"heading", 0, "DEG", "direction the waves travel toward, ccw from +x east (default 0)"},
+           {"seed", 0, "N", "random seed, 0 .. 4294967295 (default 1)"},
+           {"duration", 0, "S", "length of the record [s] (default 600)"},
+           {"dt", 0, "S", "sample interval [s] (default 0.1)"},
+           {"yaw", 0, "DEG", "the hull's fixed heading, ccw from +x (default 0; the file's vessel.pose yaw_deg)"},
+           {"offset", 0, "M", "steady horizontal offset of the origin [m] (default 0)"},
+           {"offset-heading", 0, "DEG", "direction of the offset, ccw from +x (default 0)"},
+           {"drift", 0, "M", "amplitude of the slow drift along the offset's direction [m] (default 0)"},
+           {"drift-period", 0, "S", "period of the drift [s] (default 110)"},
+           {"ramp", 0, "S", "cosine ramp of all motion from t = 0 [s], > 0 (default 20)"},
+           {"components", 0, "N", "wave frequency components, 16 .. 10000 (default 200)"},
+           {"heave-gain", 0, "F", "heave per metre of surface elevation (default 1)"},
+           {"pitch-gain", 0, "F", "pitch per radian of wave slope along the hull (default 0.45)"},
+           {"roll-gain", 0, "F", "roll per radian of wave slope across the hull (default 0.8)"},
+           {"point", 0, "X,Y,Z", "a body-frame point [m] (a fairlead) whose largest vertical speed is printed; repeatable"},
+           {"out", 0, "FILE.csv", "the motion table to write (required)"},
+           {"help", 'h', nullptr, "show this help"},
+       },
+       &runStormMotion},
   };
   return list;
 }

@@ -44,6 +44,7 @@ struct OptionSpec {
 
 struct ParsedArgs {
   std::map<std::string, std::string> values;  ///< options with a value (the last one given wins)
+  std::map<std::string, std::vector<std::string>> all_values;  ///< every value of each option, in order (repeatable options)
   std::set<std::string> flags;                ///< flags and options that were given
   std::vector<std::string> positionals;
 
@@ -112,6 +113,7 @@ int runPlot(const ParsedArgs& args, std::ostream& out, std::ostream& err);      
 int runStiffness(const ParsedArgs& args, std::ostream& out, std::ostream& err);   // cmd_vessel.cpp
 int runOffset(const ParsedArgs& args, std::ostream& out, std::ostream& err);      // cmd_vessel.cpp
 int runSweep(const ParsedArgs& args, std::ostream& out, std::ostream& err);       // cmd_sweep.cpp
+int runStormMotion(const ParsedArgs& args, std::ostream& out, std::ostream& err);  // cmd_storm_motion.cpp
 /// `static` on a system file (points and lines), cmd_system.cpp.
 int runSystemStatic(const std::string& path, bool want_table, std::size_t stride, double spacing_scale,
                     const std::string& out_dir, std::ostream& out, std::ostream& err);

@@ -142,9 +142,20 @@ void readEnvironment(const Item& it, Environment& env, const std::string& base_d
 
 Material readMaterial(const Item& it, const std::string& name) {
   const Map m(it, {"EA", "tension_strain", "EI", "GJ", "mass", "added_mass", "wet_weight", "diameter",
-                   "cdn", "cdt", "max_strain", "mbl", "compression", "mu_axial", "mu_lateral"});
+                   "cdn", "cdt", "max_strain", "mbl", "type", "compression", "mu_axial", "mu_lateral"});
   Material mat;
   mat.name = name;
+  if (m.has("type")) {
+    const Item ti = m.at("type");
+    mat.kind = readString(ti);
+    const auto& kinds = materialKinds();
+    if (std::find(kinds.begin(), kinds.end(), mat.kind) == kinds.end()) {
+      std::string list;
+      for (const auto& k : kinds) list += (list.empty() ? "" : ", ") + k;
+      ti.fail("must be one of " + list);
+    }
+    mat.compression = materialCarriesCompression(mat.kind);
+  }
   if (m.has("EA") && m.has("tension_strain"))
     throw ProblemError(m.sub("EA") + ": give either EA or tension_strain, not both" +
                        lineSuffix(m.at("EA").mark));

@@ -47,6 +47,15 @@ double Material::slackBand() const {
   return kSlackStrain * (tension_strain.empty() ? EA : interpolateTableSlope(tension_strain, 0.0));
 }
 
+const std::vector<std::string>& materialKinds() {
+  static const std::vector<std::string> kinds = {"chain", "rope", "wire", "rod", "pipe", "umbilical"};
+  return kinds;
+}
+
+bool materialCarriesCompression(const std::string& kind) {
+  return !(kind == "chain" || kind == "rope" || kind == "wire");
+}
+
 double Material::tension(double eps) const {
   if (compression) return rawTension(eps);
   const double T = rawTension(eps);

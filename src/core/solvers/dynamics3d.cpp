@@ -342,6 +342,7 @@ void DynamicSolver3D::setLowerEndInput(std::function<TopState(double)> source) {
   if (im.problem.lower_end == Problem::LowerEnd::Free)
     throw std::invalid_argument("setLowerEndInput: the line's lower end is free; it has no anchor to move");
   std::unique_ptr<EndCondition3D>& held = im.lower_kept ? im.lower_kept : im.lower;  // a released anchor stays so
+  im.lower_path = source;
   held = source ? makeMovingAnchor3D(im.problem, std::move(source)) : makeLowerEnd3D(im.problem, im.mat(0));
 }
 double DynamicSolver3D::time() const { return impl_->t; }
@@ -504,6 +505,7 @@ void addReport(StepReport& total, const StepReport& rep) {
   total.steps += rep.steps;
   total.cuts += rep.cuts;
   total.newton_iterations += rep.newton_iterations;
+  total.fallback_steps += rep.fallback_steps;
   if (rep.smallest_dt > 0.0)
     total.smallest_dt = total.smallest_dt > 0.0 ? std::min(total.smallest_dt, rep.smallest_dt) : rep.smallest_dt;
   total.message = rep.message;
@@ -529,6 +531,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.totals.newton_iterations += s.iterations;
   im.totals.jacobians += work.assemblies;
   if (!s.converged) {
+    if (im.in_fallback) ++im.totals.fallback_retries;
     winchUndoStep(im);
     im.newton_matrix.setZero();  // factored at an iterate that did not converge
     std::ostringstream os;
@@ -547,6 +550,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.acceptEndLevels(im.Y, im.water, im.t);
   winchRemesh(im);
   breakOnTension(im);
+  im.in_fallback = false;
   ++rep.steps;
   ++im.totals.steps;
   rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
@@ -557,10 +561,22 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
 
 StepReport DynamicSolver3D::advanceTo(double t_end) {
   Impl& im = *impl_;
+  // The fallback (dynamics3d_fallback.cpp) takes what is left of a base step that fails at
+  // the smallest step size; right after a fallback step a failed base step goes to it at once.
+  struct Fallback {
+    Impl* im;
+    bool immediate() const { return im->opt.fallback && im->in_fallback; }
+    bool operator()(double dt, StepReport& rep) const {
+      if (!im->opt.fallback) return false;
+      if (!fallbackStep(*im, dt, rep)) return false;
+      breakOnTension(*im);
+      return true;
+    }
+  };
   auto run = [&im](double t1) {
     return advanceWithCuts(
         im.t, im.opt.dt, im.opt.max_cut_levels, t1, [&im](double dt, StepReport& rep) { return tryStep(im, dt, rep); },
-        [&im]() { ++im.totals.cuts; });
+        [&im]() { ++im.totals.cuts; }, Fallback{&im});
   };
   // Timed events up to t_end: advance to each, then let it happen (a break on tension happens
   // inside tryStep, after the step in which its limit is first exceeded).
@@ -606,6 +622,7 @@ struct DynamicSolver3D::Saved {
   bool lower_released = false, upper_released = false;
   int parted = -1;
   double last_dt = 0.0;
+  bool in_fallback = false;
   Totals totals;
   WinchSaved winch;  ///< the mesh a winch changes, its program and length
 };
@@ -627,6 +644,7 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->upper_released = im.upper_kept != nullptr;
   s->parted = im.parted;
   s->last_dt = im.last_dt;
+  s->in_fallback = im.in_fallback;
   s->totals = im.totals;
   s->winch = winchSave(im);
   return s;
@@ -651,6 +669,7 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.lower->setState(s.lower_state);
   im.upper->setState(s.upper_state);
   im.last_dt = s.last_dt;
+  im.in_fallback = s.in_fallback;
   im.totals = s.totals;
   winchRestore(im, s.winch);
   // A kept factorization (modified Newton) stays: it is still a Jacobian of this step size.

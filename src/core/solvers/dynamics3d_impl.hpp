@@ -93,6 +93,12 @@ struct DynamicSolver3D::Impl {
 
   WinchState winch;  ///< the winch at the top (dynamics3d_winch.cpp)
 
+  /// The anchor's path when it moves (setLowerEndInput; empty: fixed), for the fallback step.
+  std::function<TopState(double)> lower_path;
+  /// The last step was a fallback step (dynamics3d_fallback.cpp): a base step that fails now
+  /// falls back at once, without the cuts of section 4.3.
+  bool in_fallback = false;
+
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
 
@@ -150,6 +156,13 @@ struct DynamicSolver3D::Impl {
 
 /// The rows changed (an event, a node added or removed): the kept factorization no longer applies.
 void rowsChanged(DynamicSolver3D::Impl& im);
+
+// The fallback step (dynamics3d_fallback.cpp; docs/method.md "Slack and snap: the fallback step").
+/// Why the line cannot fall back now ("" when it can).
+std::string fallbackUnavailable(const DynamicSolver3D::Impl& im);
+/// Take a step of dt from the accepted state with the explicit lumped-mass model of the line;
+/// false (the reason appended to rep.message) when it cannot.
+bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep);
 
 // The winch (dynamics3d_winch.cpp).
 /// Set up from the problem after the statics (the mesh final).

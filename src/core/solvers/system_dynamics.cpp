@@ -53,6 +53,8 @@ struct SystemDynamics::Impl {
   /// collapsing on the seabed): no longer advanced, held at their last converged state.
   std::vector<char> retired;
   std::vector<LineEventRecord> retired_log;
+  /// Fallback steps of each line's solvers before its last restart (a restart makes a new solver).
+  std::vector<long> fallback_before;
 
   /// Line i pulls on nothing that moves: its top is let go, and its lower end is on a fixed
   /// anchor, let go, or free (what happens to it no longer changes the system).
@@ -345,6 +347,10 @@ double SystemDynamics::time() const { return impl_->t; }
 const SystemStaticResult& SystemDynamics::initialStatic() const { return impl_->statics; }
 long SystemDynamics::pointIterations() const { return impl_->iterations; }
 long SystemDynamics::lineSteps() const { return impl_->line_steps; }
+long SystemDynamics::lineFallbackSteps(std::size_t i) const {
+  const long before = i < impl_->fallback_before.size() ? impl_->fallback_before[i] : 0;
+  return before + impl_->lines.at(i)->totals().fallback_steps;
+}
 StaticResult SystemDynamics::line(std::size_t i) const { return impl_->lines.at(i)->snapshot(); }
 
 std::array<double, 3> SystemDynamics::pointVelocity(std::size_t p) const {
@@ -619,6 +625,8 @@ bool SystemDynamics::advanceTo(double t_end, std::string* message) {
     for (Impl::Restart& r : restarts) {
       const std::vector<std::size_t>& gl = im.groups[r.group];
       for (std::size_t k = 0; k < gl.size(); ++k) {
+        if (im.fallback_before.size() < im.lines.size()) im.fallback_before.resize(im.lines.size(), 0);
+        im.fallback_before[gl[k]] += im.lines[gl[k]]->totals().fallback_steps;
         im.lines[gl[k]] = std::move(r.lines[k]);
         im.line_t0[gl[k]] = t1;
       }

@@ -18,14 +18,8 @@
 namespace mooring_dynamics {
 namespace core {
 
-struct PoseSample {
-  PoseSample() = default;
-  PoseSample(double time, const RigidPose& p) : t(time), pose(p) {}  ///< a pose-only sample
-  double t = 0.0;  ///< [s]
-  RigidPose pose;  ///< world frame
-  bool has_twist = false;
-  BodyTwist twist;  ///< body frame (has_twist)
-};
+// One row of the table: PoseSample (core/model/rigid_pose.hpp, where the generators of the model
+// layer, e.g. storm_motion, can use it too).
 
 /// Parses the table; throws ProblemError naming the source, the row (1-based line number), the
 /// column and the value for a malformed number, a row of another width, a time that does not

@@ -122,6 +122,11 @@ struct DynamicOptions {
   /// line lands on the seabed (A.3: 11 744 -> 11 144); off by default, so that the paper cases'
   /// published runs stay as they are (the box method's step cuts move with any change).
   bool damp_two_cycles = false;
+  /// A base step that the implicit scheme cannot take at max_cut_levels cuts is taken by the
+  /// 3-D solver's explicit lumped-mass step of the line (docs/method.md "Slack and snap: the
+  /// fallback step"), counted in the summaries; false: such a step stops the run, as the paper's
+  /// method alone does. The 2-D solver has none.
+  bool fallback = true;
 
   /// Threads of the 2-D and 3-D dynamic solvers, 1 or 2: with 2 a second thread assembles and
   /// eliminates the upper half of the line in every Newton iteration (the Newton matrix's

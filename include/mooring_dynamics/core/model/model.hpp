@@ -74,6 +74,9 @@ struct Material {
   double cdt = 0.0;                       ///< tangential drag coefficient [-]
   double max_strain = 0.2;                ///< strain beyond which the law is not trusted [-]
   double mbl = 0.0;                       ///< minimum breaking load [N]; 0 = not given
+  /// What the line is (YAML `type`): chain, rope, wire, rod, pipe or umbilical; "" not given.
+  /// It sets the default of `compression` (materialCarriesCompression).
+  std::string kind;
   bool compression = true;                ///< the law holds below zero strain too (else slackRamp)
   /// Coulomb friction coefficients on the seabed, along the line and across it [-], times the
   /// seabed reaction (docs/method.md, "Seabed friction"); 0 = frictionless (the default).
@@ -93,6 +96,13 @@ struct Material {
   /// Width in tension of the slack ramp, kSlackStrain times the law's slope at zero strain [N].
   double slackBand() const;
 };
+
+/// The material kinds of the YAML key `type`, and whether each carries compression unless the
+/// file says otherwise: chain, rope and wire do not (they cannot push: their tension is >= 0
+/// exactly); rod, pipe and umbilical do (the law through zero, with bending), and so does a
+/// material of no given type (WHOI Cable's law, the paper's eq. 9).
+const std::vector<std::string>& materialKinds();
+bool materialCarriesCompression(const std::string& kind);
 
 /// A point body on the line: float, clump weight or instrument.
 struct Body {

@@ -56,6 +56,17 @@ struct BodyTwist {
   std::string validate(const std::string& what) const;
 };
 
+/// A timestamped pose, with or without its body twist: one row of a vessel motion table
+/// (core/io/vessel_motion_io.hpp), one sample of a generated motion (core/model/storm_motion.hpp).
+struct PoseSample {
+  PoseSample() = default;
+  PoseSample(double time, const RigidPose& p) : t(time), pose(p) {}  ///< a pose-only sample
+  double t = 0.0;  ///< [s]
+  RigidPose pose;  ///< world frame
+  bool has_twist = false;
+  BodyTwist twist;  ///< body frame (has_twist)
+};
+
 /// The world-frame motion of a body at `pose` with body twist `twist`: v = R v_body,
 /// omega = R omega_body (R = pose.orientation, body -> world).
 RigidMotion motionFromBodyTwist(const RigidPose& pose, const BodyTwist& twist);

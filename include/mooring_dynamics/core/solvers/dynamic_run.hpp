@@ -94,12 +94,21 @@ bool stepWithCuts(double& t, double dt, int level, int max_levels, StepReport& r
 }
 }  // namespace detail
 
+/// A solver without a fallback step: a step that fails at the smallest size stops the run.
+struct NoFallback {
+  bool immediate() const { return false; }
+  bool operator()(double, StepReport&) const { return false; }
+};
+
 /// Advance the solver time `t` to t_end in base steps `base` (the last one shortened to land on
 /// t_end), each with adaptive cutting. try_step(dt, report) -> bool takes one step of dt from the
-/// accepted state; on_cut() counts a cut. On failure the report says why and t stays at the last
-/// converged time.
-template <class TryStep, class OnCut>
-StepReport advanceWithCuts(double& t, double base, int max_levels, double t_end, TryStep try_step, OnCut on_cut) {
+/// accepted state; on_cut() counts a cut. A base step that fails at `max_levels` cuts goes to
+/// fallback(dt_left, report) -> bool for the rest of the base step (the 3-D solver's lumped-mass
+/// step); when fallback.immediate() (the last step fell back) a failed base step goes to it
+/// without cuts. On failure the report says why and t stays at the last converged time.
+template <class TryStep, class OnCut, class Fallback = NoFallback>
+StepReport advanceWithCuts(double& t, double base, int max_levels, double t_end, TryStep try_step, OnCut on_cut,
+                           Fallback fallback = Fallback()) {
   StepReport rep;
   const double eps = 1e-9 * base;
   if (t_end < t - eps) {
@@ -110,9 +119,14 @@ StepReport advanceWithCuts(double& t, double base, int max_levels, double t_end,
   }
   while (t < t_end - eps) {
     const double dt = std::min(base, t_end - t);
-    if (!detail::stepWithCuts(t, dt, 0, max_levels, rep, try_step, on_cut)) {
-      rep.ok = false;
-      return rep;
+    const double t_base_end = t + dt;
+    const int levels = fallback.immediate() ? 0 : max_levels;
+    if (!detail::stepWithCuts(t, dt, 0, levels, rep, try_step, on_cut)) {
+      if (!fallback(t_base_end - t, rep)) {
+        rep.ok = false;
+        return rep;
+      }
+      t = t_base_end;
     }
   }
   t = std::max(t, t_end);

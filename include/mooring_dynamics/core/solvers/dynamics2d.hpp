@@ -30,6 +30,9 @@ struct StepReport {
   int cuts = 0;              ///< times a step was cut by 10 (section 4.3)
   int newton_iterations = 0; ///< summed over accepted and failed attempts
   double smallest_dt = 0.0;  ///< [s]
+  /// Steps the implicit scheme could not take, taken by the solver's fallback (3-D: the
+  /// lumped-mass step, docs/method.md "Slack and snap: the fallback step"), included in steps.
+  int fallback_steps = 0;
   std::string message;       ///< on failure: time, node and variable that would not converge
 };
 
@@ -66,6 +69,9 @@ class DynamicSolver2D {
   struct Totals {
     long steps = 0, cuts = 0, newton_iterations = 0;
     long jacobians = 0;  ///< Jacobians assembled and factored (3-D solver; 0 from the 2-D one)
+    long fallback_steps = 0;     ///< steps taken by the fallback (3-D solver; included in steps)
+    long fallback_substeps = 0;  ///< the fallback's explicit sub-steps
+    long fallback_retries = 0;   ///< implicit base steps tried and failed right after a fallback step
   };
   Totals totals() const;
 

@@ -127,6 +127,9 @@ class SystemDynamics {
   /// Point iterations and line steps taken so far (cost bookkeeping).
   long pointIterations() const;
   long lineSteps() const;
+  /// Steps of line i taken by its solver's fallback so far (docs/method.md "Slack and snap: the
+  /// fallback step"), over its restarts too.
+  long lineFallbackSteps(std::size_t i) const;
 
   struct Impl;
 
