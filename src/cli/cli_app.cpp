@@ -335,7 +335,7 @@ const std::vector<Command>& commands() {
        &runSweep},
       {"storm-motion",
        "--hs H --tp T --out FILE.csv [--gamma G] [--heading DEG] [--seed N] [--duration S] [--dt S] [--yaw DEG] "
-       "[--offset M] [--offset-heading DEG] [--drift M] [--drift-period S] [--ramp S] [--point X,Y,Z ...]",
+       "[--offset M] [--offset-heading DEG] [--drift M] [--drift-period S] [--ramp S] [--f-min F] [--f-max F] [--point X,Y,Z ...]",
        "vessel motion table of a moored vessel in an irregular sea",
        "Write a vessel motion table (poses and body twists, the 14 columns of vessel.motion_table:\n"
        "t,x,y,z,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz) of a vessel in a long-crested JONSWAP sea, from an ASSUMED\n"
@@ -362,6 +362,8 @@ const std::vector<Command>& commands() {
            {"drift-period", 0, "S", "period of the drift [s] (default 110)"},
            {"ramp", 0, "S", "cosine ramp of all motion from t = 0 [s], > 0 (default 20)"},
            {"components", 0, "N", "wave frequency components, 16 .. 10000 (default 200)"},
+           {"f-min", 0, "F", "lowest component frequency as a multiple of 1/Tp, in (0, 1) (default 0.5)"},
+           {"f-max", 0, "F", "highest component frequency as a multiple of 1/Tp, > 1 (default 3.5; a hull hardly heaves above 2)"},
            {"heave-gain", 0, "F", "heave per metre of surface elevation (default 1)"},
            {"pitch-gain", 0, "F", "pitch per radian of wave slope along the hull (default 0.45)"},
            {"roll-gain", 0, "F", "roll per radian of wave slope across the hull (default 0.8)"},

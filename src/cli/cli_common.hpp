@@ -128,7 +128,12 @@ struct RunSummary {
   std::size_t samples = 0;
   std::string timeseries;     ///< the CSV file written
   std::vector<core::LineEventRecord> events;  ///< line events that happened (releases, breaks)
+  /// Fallback steps of each line (docs/method.md "Slack and snap"), by line name, in line order.
+  std::vector<std::pair<std::string, long>> fallback_steps;
 };
+/// "fallback steps: 3 on bow_port_2, 1 on stern_stbd_1" (lines with none left out), or "" when
+/// no line fell back.
+std::string fallbackStepsText(const std::vector<std::pair<std::string, long>>& per_line);
 void writeRunSummaryJson(std::ostream& f, const RunSummary& s);  // cmd_system.cpp
 
 /// The "events" array of a dynamic_summary.json, without the key (cmd_dynamic.cpp).

@@ -216,6 +216,8 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
     << "  \"cuts\": " << r.cuts << ",\n"
     << "  \"newton_iterations\": " << r.newton_iterations << ",\n"
     << "  \"jacobians\": " << r.jacobians << ",\n"
+    << "  \"fallback_steps\": " << r.fallback_steps << ",\n"
+    << "  \"fallback_substeps\": " << r.fallback_substeps << ",\n"
     << "  \"threads\": " << d.threads << ",\n"
     << "  \"wall_seconds\": " << jsonNum(r.wall_seconds) << ",\n"
     << "  \"real_time_factor\": " << jsonNum(g.rtf) << ",\n"
@@ -253,6 +255,8 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
   o << "  solver         " << r.steps << " steps, " << r.cuts << " cuts, " << r.newton_iterations
     << " Newton iterations";
   if (r.jacobians > 0 && r.jacobians != r.newton_iterations) o << " (" << r.jacobians << " Jacobians)";
+  if (r.fallback_steps > 0)
+    o << ", " << r.fallback_steps << " fallback steps (" << r.fallback_substeps << " explicit sub-steps)";
   o << "\n";
   o << "  wall time      " << fmtNum("%.3g", r.wall_seconds) << " s, real-time factor "
     << (std::isfinite(g.rtf) ? fmtNum("%.3g", g.rtf) : std::string("inf"))

@@ -35,6 +35,8 @@ const std::vector<std::pair<std::string, std::string>>& fieldOptions() {
       {"duration", "duration"},
       {"dt", "dt"},
       {"components", "components"},
+      {"f_min_factor", "f-min"},
+      {"f_max_factor", "f-max"},
       {"heave_gain", "heave-gain"},
       {"pitch_gain", "pitch-gain"},
       {"roll_gain", "roll-gain"},
@@ -106,6 +108,8 @@ int runStormMotion(const ParsedArgs& args, std::ostream& out, std::ostream& err)
   number("drift", o.drift_amplitude);
   number("drift-period", o.drift_period);
   number("ramp", o.ramp);
+  number("f-min", o.f_min_factor);
+  number("f-max", o.f_max_factor);
   number("heave-gain", o.heave_gain);
   number("pitch-gain", o.pitch_gain);
   number("roll-gain", o.roll_gain);

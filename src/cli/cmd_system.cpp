@@ -93,7 +93,17 @@ void writeRunSummaryJson(std::ostream& f, const RunSummary& s) {
     << ",\n  \"simulated_time\": " << csvNum(s.simulated_time) << ",\n  \"duration\": " << csvNum(s.duration)
     << ",\n  \"samples\": " << s.samples << ",\n  \"wall_seconds\": " << csvNum(s.wall_seconds)
     << ",\n  \"real_time_factor\": " << csvNum(s.wall_seconds > 0.0 ? s.simulated_time / s.wall_seconds : 0.0)
-    << ",\n  \"events\": " << lineEventsJson(s.events) << ",\n  \"timeseries\": " << jsonText(s.timeseries) << "\n}\n";
+    << ",\n  \"events\": " << lineEventsJson(s.events) << ",\n  \"fallback_steps\": {";
+  for (std::size_t i = 0; i < s.fallback_steps.size(); ++i)
+    f << (i ? ", " : "") << jsonText(s.fallback_steps[i].first) << ": " << s.fallback_steps[i].second;
+  f << "},\n  \"timeseries\": " << jsonText(s.timeseries) << "\n}\n";
+}
+
+std::string fallbackStepsText(const std::vector<std::pair<std::string, long>>& per_line) {
+  std::string text;
+  for (const auto& [name, count] : per_line)
+    if (count > 0) text += (text.empty() ? "fallback steps: " : ", ") + std::to_string(count) + " on " + name;
+  return text;
 }
 
 /// Create the output directory; false (and the message on err) when that fails.
@@ -283,7 +293,11 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
   if (!lengths.empty())
     out << "  winch          " << s.lines[winched].name << " line length " << fmtNum("%.3f", lengths.front())
         << " m -> " << fmtNum("%.3f", lengths.back()) << " m\n";
+  std::vector<std::pair<std::string, long>> fallback;
+  for (std::size_t i = 0; i < s.lines.size(); ++i) fallback.emplace_back(s.lines[i].name, sim->lineFallbackSteps(i));
   out << "  solver         " << sim->pointIterations() << " point iterations, " << sim->lineSteps() << " line steps\n";
+  const std::string fallback_text = fallbackStepsText(fallback);
+  if (!fallback_text.empty()) out << "  " << fallback_text << "\n";
   out << "  wall time      " << fmtNum("%.3g", wall) << " s, real-time factor " << fmtNum("%.3g", sim->time() / wall)
       << "\n";
   if (!out_dir.empty()) {
@@ -318,6 +332,7 @@ int runSystemDynamic(const std::string& path, const std::function<void(core::Dyn
     sum.wall_seconds = wall;
     sum.samples = rows.size();
     sum.timeseries = ts.filename().string();
+    sum.fallback_steps = fallback;
     const fs::path js = dir / "dynamic_summary.json";
     if (!writeFile(js, [&](std::ostream& f) { writeRunSummaryJson(f, sum); }, err)) return kExitIo;
     out << "wrote " << ts.string() << " and " << js.string() << "\n";

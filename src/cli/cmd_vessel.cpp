@@ -281,7 +281,12 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
     for (const auto& r : rows) fmax = std::max(fmax, std::hypot(r[1], r[2]));
     out << "  wrench (body)  largest horizontal force " << fmtNum("%.1f", fmax) << " N\n";
   }
+  std::vector<std::pair<std::string, long>> fallback;
+  for (std::size_t i = 0; i < s.lines.size(); ++i)
+    fallback.emplace_back(s.lines[i].name, run->dynamics().lineFallbackSteps(i));
   out << "  solver         " << run->dynamics().lineSteps() << " line steps\n";
+  const std::string fallback_text = fallbackStepsText(fallback);
+  if (!fallback_text.empty()) out << "  " << fallback_text << "\n";
   out << "  wall time      " << fmtNum("%.3g", wall) << " s, real-time factor " << fmtNum("%.3g", simulated / wall) << "\n";
   if (!out_dir.empty()) {
     if (!makeOutputDir(out_dir, err)) return kExitIo;
@@ -309,6 +314,7 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
     sum.wall_seconds = wall;
     sum.samples = rows.size();
     sum.timeseries = ts.filename().string();
+    sum.fallback_steps = fallback;
     const fs::path js = fs::path(out_dir) / "dynamic_summary.json";
     if (!writeFile(js, [&](std::ostream& f) { writeRunSummaryJson(f, sum); }, err)) return kExitIo;
     out << "wrote " << ts.string() << " and " << js.string() << "\n";

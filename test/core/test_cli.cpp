@@ -572,7 +572,7 @@ TEST_F(CliTest, TwoDimensionalModelRejectsYAndSaysWhy) {
 // A system whose line step fails at its smallest cut stops as a single line's run does: the
 // samples up to the last good state are written, dynamic_summary.json says "completed": false, the
 // exit code is 4 and stderr says where it stopped. Forced: the three-leg buoy in 4 m waves with 2
-// Newton iterations per step and no step cutting, which the first seconds (waves ramped in over
+// Newton iterations per step, no step cutting and no fallback step, which the first seconds (waves ramped in over
 // 6 s) still converge and a full wave does not.
 TEST_F(CliTest, SystemDynamicRunThatStopsExitsFourAndWritesUpToTheLastGoodState) {
   std::string text = readText("config/three_leg_buoy.yaml");
@@ -580,7 +580,7 @@ TEST_F(CliTest, SystemDynamicRunThatStopsExitsFourAndWritesUpToTheLastGoodState)
   const std::string wind = "  wind: {speed: 10, direction_deg: 45}";
   ASSERT_NE(text.find(wind), std::string::npos);
   text.replace(text.find(wind), wind.size(), wind + "\n  waves: {type: regular, height: 4, period: 6, ramp: 6}");
-  text += "dynamics: {duration: 10, dt: 0.5, max_iterations: 2, max_cut_levels: 0}\n";
+  text += "dynamics: {duration: 10, dt: 0.5, max_iterations: 2, max_cut_levels: 0, fallback: false}\n";
   const fs::path out = dir_ / "stop";
   const RunResult r = run({"dynamic", file("stop_system.yaml", text).string(), "--out", out.string()});
   EXPECT_EQ(r.code, 4) << r.out << r.err;

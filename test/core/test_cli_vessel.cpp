@@ -145,13 +145,14 @@ TEST_F(CliVessel, DynamicRunFollowsTheTableWithTheSameBitsOnOneAndTwoThreads) {
   EXPECT_NE(bad.err.find("column y = \"abc\""), std::string::npos) << bad.err;
 }
 
-// A step that fails at its smallest cut (4 Newton iterations, no cutting: the forced failure) stops
+// A step that fails at its smallest cut (4 Newton iterations, no cutting, no fallback step: the
+// forced failure) stops
 // the run as it stops a single line's: the series up to the last good sample is written, the
 // summary says "completed": false, and the exit code is 4 (README, "Exit codes").
 TEST_F(CliVessel, DynamicRunThatStopsExitsFourAndWritesUpToTheLastGoodSample) {
   std::string text = kVessel;
   text.replace(text.find("dynamics: {dt: 0.25, lambda_inf: -0.5}"), 38,
-               "dynamics: {dt: 0.25, lambda_inf: -0.5, max_iterations: 4, max_cut_levels: 0}");
+               "dynamics: {dt: 0.25, lambda_inf: -0.5, max_iterations: 4, max_cut_levels: 0, fallback: false}");
   std::ofstream(dir_ / "vessel.yaml") << text;
   {
     // The table of SetUp, but the vessel lurches 5 m at t = 2.25 s (20 m/s: under max_speed, so

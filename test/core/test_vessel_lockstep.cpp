@@ -140,6 +140,7 @@ TEST(VesselLockstep, AFailedStepKeepsTheLastGoodStateAndContinues) {
   DynamicOptions o = options();
   o.max_iterations = 4;
   o.max_cut_levels = 0;
+  o.fallback = false;  // the step must fail: no fallback step to take it
   VesselLockstepOptions lo;
   lo.max_speed = 0.0;
   lo.failures_to_reinit = 3;

@@ -335,6 +335,12 @@ void readStepControl(const Map& m, DynamicOptions& d) {
   if (m.has("jacobian_reuse")) d.jacobian_reuse = readBool(m.at("jacobian_reuse"));
   if (m.has("damp_two_cycles")) d.damp_two_cycles = readBool(m.at("damp_two_cycles"));
   if (m.has("fallback")) d.fallback = readBool(m.at("fallback"));
+  if (m.has("fallback_after_cuts")) {
+    const Item fi = m.at("fallback_after_cuts");
+    const long long v = readInteger(fi);
+    if (v < 0 || v > 8) fi.fail("must be an integer in [0, 8]");
+    d.fallback_after_cuts = static_cast<int>(v);
+  }
   if (m.has("threads")) {
     const Item ti = m.at("threads");
     const long long v = readInteger(ti);
@@ -419,7 +425,7 @@ void readWinch(const Item& it, Winch& w) {
 void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   const Map m(it, {"duration", "dt", "output_interval", "snapshot_interval", "record_s", "scheme", "lambda_inf",
                    "alpha_m", "alpha_k", "gamma", "max_cut_levels", "tolerance", "max_iterations", "relaxation",
-                   "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "fallback", "threads", "adaptive_mesh", "mesh_weight", "top_motion",
+                   "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "fallback", "fallback_after_cuts", "threads", "adaptive_mesh", "mesh_weight", "top_motion",
                    "gnss", "events", "winch"});
   d.duration = m.number("duration", d.duration, Range::Positive);
   d.dt = m.number("dt", d.dt, Range::Positive);

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -73,8 +75,16 @@ class DynamicStepSystem3D : public NewtonSystem {
       const double zb = env.seabedElevation(Yv[i + X], Yv[i + eq3d::Y]);
       const double rest = zb - 1.5 * w / env.seabed.stiffness;
       if (Yv[i + Z] >= zb && Yv[i + Z] + dY[i + Z] < rest) dY[i + Z] = rest - Yv[i + Z];
+      // A slack line's strain has almost no restoring force (kSlackJacobianFraction): an update
+      // that would take the stretch 1 + eps through zero (where sqrt(1 + eps) and the frame
+      // rows lose their meaning) goes a fraction of the way to it instead.
+      const double stretch = 1.0 + Yv[i + EPS];
+      if (stretch > 0.0 && stretch + dY[i + EPS] < kStretchFloor * stretch)
+        dY[i + EPS] = -(1.0 - kStretchFloor) * stretch;
     }
   }
+  /// An update keeps at least this fraction of a node's stretch 1 + eps [-].
+  static constexpr double kStretchFloor = 0.1;
 
   /// The residual alone is evaluated in double (for Newton iterations that reuse a Jacobian);
   /// with J, in AutoDiff scalars (AD16 for the end rows, AD32 for the intervals).
@@ -512,6 +522,10 @@ void addReport(StepReport& total, const StepReport& rep) {
 }
 
 /// One attempted step of size dt from the accepted state; on success the state advances.
+/// Newton iterations of the first implicit step after a fallback step: a line that is taut again
+/// converges in a handful (the state is the lumped line's, close to the box solution).
+constexpr int kRetryIterations = 10;
+
 bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   const double t_new = im.t + dt;
   if (!winchBeginStep(im, t_new, rep.message)) return false;
@@ -521,9 +535,15 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   Eigen::VectorXd Yv = im.Y + dt * im.Yd;
   if (im.opt.jacobian_reuse && sameStepSize(im.last_dt, dt) && im.Yd_prev.size() == im.Yd.size())
     Yv += 0.5 * dt * (im.Yd - im.Yd_prev);
+  // A predicted stretch 1 + eps below kStretchFloor of the last one (a slack stretch whose strain
+  // rate carries no restoring force) starts from the last strain instead.
+  for (int i = 0; i + N <= static_cast<int>(Yv.size()); i += N)
+    if (1.0 + Yv[i + EPS] < DynamicStepSystem3D::kStretchFloor * (1.0 + im.Y[i + EPS])) Yv[i + EPS] = im.Y[i + EPS];
   // A kept factorization belongs to one step size (the matrix holds 1 / (gamma dt)).
   if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
-  const NewtonOptions no = stepNewtonOptions(im.opt);
+  NewtonOptions no = stepNewtonOptions(im.opt);
+  // Back from a fallback step: a few iterations say whether the implicit step holds again.
+  if (im.in_fallback) no.max_iterations = std::min(no.max_iterations, kRetryIterations);
   NewtonWork work;
   const SolverSummary s = solveNewton(sys, Yv, no, &im.newton_matrix, &work);
   im.factored_dt = dt;
@@ -565,7 +585,10 @@ StepReport DynamicSolver3D::advanceTo(double t_end) {
   // the smallest step size; right after a fallback step a failed base step goes to it at once.
   struct Fallback {
     Impl* im;
-    bool immediate() const { return im->opt.fallback && im->in_fallback; }
+    int levels(int max_levels) const {
+      if (!im->opt.fallback) return max_levels;
+      return im->in_fallback ? 0 : std::min(max_levels, im->opt.fallback_after_cuts);
+    }
     bool operator()(double dt, StepReport& rep) const {
       if (!im->opt.fallback) return false;
       if (!fallbackStep(*im, dt, rep)) return false;

@@ -66,6 +66,7 @@ using Vec3 = Eigen::Vector3d;
 struct Lumped {
   int n = 0;
   std::vector<Vec3> x, v, f;
+  std::vector<double> drag_rate;  ///< d|drag| / d|v| at the node [N s/m] (semi-implicit drag)
   std::vector<double> mass;       ///< structural mass [kg]
   std::vector<double> added;      ///< added mass across the tangent [kg] (line)
   std::vector<double> body_mass;  ///< inline bodies' mass plus added mass [kg] (isotropic)
@@ -101,6 +102,7 @@ void lumpLine(const DynamicSolver3D::Impl& im, Lumped& L) {
   L.x.assign(n, Vec3::Zero());
   L.v.assign(n, Vec3::Zero());
   L.f.assign(n, Vec3::Zero());
+  L.drag_rate.assign(n, 0.0);
   L.mass.assign(n, 0.0);
   L.added.assign(n, 0.0);
   L.body_mass.assign(n, 0.0);
@@ -155,7 +157,10 @@ void lumpedForces(const DynamicSolver3D::Impl& im, const std::vector<Water3>& wa
   const Environment& env = im.problem.environment;
   const double rho = env.water_density;
   const int n = L.n;
-  for (int j = 0; j < n; ++j) L.f[j].setZero();
+  for (int j = 0; j < n; ++j) {
+    L.f[j].setZero();
+    L.drag_rate[j] = 0.0;
+  }
   for (int j = 0; j + 1 < n; ++j) {
     const MeshInterval& iv = im.mesh.intervals[static_cast<std::size_t>(j)];
     if (!(iv.h > 0.0)) {
@@ -199,6 +204,12 @@ void lumpedForces(const DynamicSolver3D::Impl& im, const std::vector<Water3>& wa
                       (m.cdn * vnn * vn + eq2d::kPi * m.cdt * std::abs(vt) * vt * t);
     L.f[j] += 0.5 * drag;
     L.f[j + 1] += 0.5 * drag;
+    // The drag's rate of change with the node's speed (quadratic drag: twice the force per unit
+    // speed), half to each node: the update treats the drag implicitly with it.
+    const double rate = 0.5 * rho * m.diameter * h * stretch * 2.0 *
+                        std::max(m.cdn * vnn, eq2d::kPi * m.cdt * std::abs(vt));
+    L.drag_rate[j] += 0.25 * rate;
+    L.drag_rate[j + 1] += 0.25 * rate;
   }
   // The seabed (eq. 35-36 with the box rows' contact onset) on each node's tributary length.
   for (int j = 0; j < n; ++j) {
@@ -284,10 +295,14 @@ void toBoxState(const DynamicSolver3D::Impl& im, const Lumped& L, const Eigen::V
       eps_cnt[k] += 1.0;
     }
   }
+  // A free end carries no tension: its strain is the material's at zero tension.
+  const bool free_top = im.upper->name() == "released top";
+  const bool free_low = im.lower->name() == "released lower end" || im.lower->name() == "free end";
   for (int j = 0; j < n; ++j) {
     double* y = Yout.data() + N * j;
     const double* y0 = Y0.data() + N * j;
     if (eps_cnt[j] > 0.0) y[EPS] = eps_sum[j] / eps_cnt[j];
+    if ((j == n - 1 && free_top) || (j == 0 && free_low)) y[EPS] = im.mat(j).strainAt(0.0);
     // Frame: the last frame turned by the smallest rotation from its tangent to the new one.
     double R0[9];
     quat::matrix(y0 + Q0, R0);
@@ -416,10 +431,14 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
         ms += L.mass[i] + L.body_mass[i];
         ma += L.added[i];
       }
+      double cd = L.drag_rate[j];
+      for (int i = j + 1; i < n && tie[i] == j; ++i) cd += L.drag_rate[i];
       const Vec3& t = L.tangent[j];
-      // M = ms I + ma (I - t t^T): along t ms, across ms + ma.
+      // M = ms I + ma (I - t t^T): along t ms, across ms + ma. The drag linearised about the
+      // current velocity and taken at the end of the sub-step (backward Euler in the drag alone)
+      // adds h cd to both: the update is stable whatever the relative speed.
       const Vec3 ft = t.dot(L.f[j]) * t;
-      const Vec3 a = ft / ms + (L.f[j] - ft) / (ms + ma);
+      const Vec3 a = ft / (ms + h * cd) + (L.f[j] - ft) / (ms + ma + h * cd);
       L.v[j] += h * a;
       L.x[j] += h * L.v[j];
     }

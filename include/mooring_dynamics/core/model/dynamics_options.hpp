@@ -127,6 +127,12 @@ struct DynamicOptions {
   /// fallback step"), counted in the summaries; false: such a step stops the run, as the paper's
   /// method alone does. The 2-D solver has none.
   bool fallback = true;
+  /// Cuts a base step gets before what is left of it goes to the fallback step, in [0, 8]
+  /// (capped at max_cut_levels). 4 (= max_cut_levels): only steps the implicit scheme cannot
+  /// take at all, so a run that goes through without the fallback is unchanged bit for bit.
+  /// 1: a storm's slack-and-snap steps go to the fallback after one cut, without the failed
+  /// Newton iterations of the deeper cuts (docs/performance.md, "Storms").
+  int fallback_after_cuts = 4;
 
   /// Threads of the 2-D and 3-D dynamic solvers, 1 or 2: with 2 a second thread assembles and
   /// eliminates the upper half of the line in every Newton iteration (the Newton matrix's

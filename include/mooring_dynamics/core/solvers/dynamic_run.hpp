@@ -96,7 +96,7 @@ bool stepWithCuts(double& t, double dt, int level, int max_levels, StepReport& r
 
 /// A solver without a fallback step: a step that fails at the smallest size stops the run.
 struct NoFallback {
-  bool immediate() const { return false; }
+  int levels(int max_levels) const { return max_levels; }
   bool operator()(double, StepReport&) const { return false; }
 };
 
@@ -104,8 +104,8 @@ struct NoFallback {
 /// t_end), each with adaptive cutting. try_step(dt, report) -> bool takes one step of dt from the
 /// accepted state; on_cut() counts a cut. A base step that fails at `max_levels` cuts goes to
 /// fallback(dt_left, report) -> bool for the rest of the base step (the 3-D solver's lumped-mass
-/// step); when fallback.immediate() (the last step fell back) a failed base step goes to it
-/// without cuts. On failure the report says why and t stays at the last converged time.
+/// step); fallback.levels(max_levels) says how many cuts a base step gets before that (fewer
+/// than max_levels when the fallback is there, none right after a fallback step). On failure the report says why and t stays at the last converged time.
 template <class TryStep, class OnCut, class Fallback = NoFallback>
 StepReport advanceWithCuts(double& t, double base, int max_levels, double t_end, TryStep try_step, OnCut on_cut,
                            Fallback fallback = Fallback()) {
@@ -120,7 +120,7 @@ StepReport advanceWithCuts(double& t, double base, int max_levels, double t_end,
   while (t < t_end - eps) {
     const double dt = std::min(base, t_end - t);
     const double t_base_end = t + dt;
-    const int levels = fallback.immediate() ? 0 : max_levels;
+    const int levels = fallback.levels(max_levels);
     if (!detail::stepWithCuts(t, dt, 0, levels, rep, try_step, on_cut)) {
       if (!fallback(t_base_end - t, rep)) {
         rep.ok = false;
@@ -313,6 +313,8 @@ DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(do
   out.cuts = tot.cuts;
   out.newton_iterations = tot.newton_iterations;
   out.jacobians = tot.jacobians;
+  out.fallback_steps = tot.fallback_steps;
+  out.fallback_substeps = tot.fallback_substeps;
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;
 }

@@ -105,6 +105,9 @@ struct DynamicSeries {
   std::vector<double> line_length;
   long steps = 0, cuts = 0, newton_iterations = 0;
   long jacobians = 0;  ///< Jacobians assembled (3-D; 0 from the 2-D solver, one per iteration)
+  /// Base-step remainders taken by the fallback step (3-D; docs/method.md "Slack and snap") and
+  /// the explicit sub-steps they took.
+  long fallback_steps = 0, fallback_substeps = 0;
   double wall_seconds = 0.0;
 };
 

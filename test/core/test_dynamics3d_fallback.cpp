@@ -1,0 +1,121 @@
+// The fallback step of the 3-D solver (src/core/solvers/dynamics3d_fallback.cpp): runs that the
+// implicit step alone cannot finish (a wholly slack line overrun by its top, then snapped taut)
+// go through, with the fallback steps counted; tensions of lines without compression never go
+// below zero; the run is reproducible bit for bit; with dynamics.fallback off the same run stops.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mooring_dynamics/core/io/problem_io.hpp"
+#include "mooring_dynamics/core/model/storm_motion.hpp"
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+#include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
+
+using namespace mooring_dynamics::core;
+
+namespace {
+
+/// config/heaved_slack.yaml (a light rope over a clump on a chain, heaved 1.5 m at 3 s) in 3-D
+/// with `compression: false` on the chain too: the case the implicit step alone stops on.
+Problem heavedSlackNoCompression(double duration) {
+  Problem p = loadProblemFromFile("config/heaved_slack.yaml");
+  p.formulation = Formulation::ThreeD;
+  for (Material& m : p.materials) m.compression = false;
+  p.dynamics.duration = duration;
+  p.dynamics.fallback_after_cuts = 1;  // the storm setting (docs/problem_format.md)
+  return p;
+}
+
+double smallest(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+double largest(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+
+}  // namespace
+
+TEST(Dynamics3DFallback, HeavedSlackLineWithoutCompressionRunsThroughEverySnap) {
+  Problem p = heavedSlackNoCompression(12.0);  // four heave cycles, each slack then snapped
+  const DynamicSeries r = runDynamic3D(p);
+  ASSERT_TRUE(r.completed) << r.message;
+  EXPECT_GT(r.fallback_steps, 0) << "the implicit step alone stops on this case (see the next test)";
+  EXPECT_GE(r.fallback_substeps, r.fallback_steps);
+  // Neither chain nor rope pushes: every published tension >= 0, exactly.
+  EXPECT_GE(smallest(r.top_tension), 0.0);
+  EXPECT_GE(smallest(r.anchor_tension), 0.0);
+  for (const auto& series : r.node_tension) EXPECT_GE(smallest(series), 0.0);
+  EXPECT_EQ(smallest(r.top_tension), 0.0) << "the top goes slack in every cycle";
+  // Hand bound on the snap: the rope (EA, length L) cannot be stretched by more than the heave's
+  // range 2a beyond its static state, so its tension stays below the static top tension plus
+  // EA 2a / L (a quasi-static bound; the snap's dynamic part is an elastic wave in the same rope).
+  const Material& rope = p.materials.at(1);
+  const double a = p.dynamics.top_motion.amplitude_z, L = 20.0;
+  const double bound = r.initial_static.nodes.back().tension + rope.EA * 2.0 * a / L;
+  EXPECT_LT(largest(r.top_tension), bound);
+  EXPECT_GT(largest(r.top_tension), r.initial_static.nodes.back().tension) << "it snaps above its static tension";
+}
+
+TEST(Dynamics3DFallback, WithoutTheFallbackTheSameRunStops) {
+  Problem p = heavedSlackNoCompression(12.0);
+  p.dynamics.fallback = false;
+  const DynamicSeries r = runDynamic3D(p);
+  EXPECT_FALSE(r.completed);
+  EXPECT_EQ(r.fallback_steps, 0);
+  EXPECT_NE(r.message.find("cuts"), std::string::npos) << r.message;
+}
+
+TEST(Dynamics3DFallback, RunsWithFallbackStepsAreBitIdenticalOnOneAndTwoThreads) {
+  Problem p = heavedSlackNoCompression(4.0);
+  const DynamicSeries a = runDynamic3D(p);
+  const DynamicSeries b = runDynamic3D(p);
+  p.dynamics.threads = 2;
+  const DynamicSeries c = runDynamic3D(p);
+  ASSERT_TRUE(a.completed && b.completed && c.completed) << a.message << b.message << c.message;
+  ASSERT_GT(a.fallback_steps, 0);
+  EXPECT_EQ(a.fallback_steps, b.fallback_steps);
+  EXPECT_EQ(a.fallback_steps, c.fallback_steps);
+  ASSERT_EQ(a.top_tension.size(), c.top_tension.size());
+  for (std::size_t k = 0; k < a.top_tension.size(); ++k) {
+    ASSERT_EQ(a.top_tension[k], b.top_tension[k]) << k;
+    ASSERT_EQ(a.top_tension[k], c.top_tension[k]) << k;
+    ASSERT_EQ(a.top_x[k], c.top_x[k]) << k;
+  }
+}
+
+TEST(Dynamics3DFallback, SmallVesselRidesOutAShortHs4StormWithChainThatDoesNotPush) {
+  // test/data/small_vessel.yaml (3 chain lines, 50 m of water) with `type: chain` semantics
+  // (no compression) in a JONSWAP Hs 4 m, Tp 9 s sea from the bow quarter: the fairleads move
+  // at several m/s and the lines go slack and snap.
+  SystemProblem s = loadSystemFromFile("test/data/small_vessel.yaml");
+  for (Material& m : s.materials) m.compression = false;
+  DynamicOptions o = s.dynamics;
+  o.fallback_after_cuts = 1;
+  StormMotionOptions storm;
+  storm.hs = 4.0;
+  storm.tp = 9.0;
+  storm.heading_deg = 30.0;
+  storm.seed = 3;
+  storm.duration = 60.0;
+  storm.dt = 0.1;
+  storm.f_max_factor = 2.0;
+  storm.mean_offset = 2.0;
+  storm.mean_offset_heading_deg = 210.0;
+  const std::vector<PoseSample> samples = generateStormMotion(storm);
+  VesselLockstepOptions lo;
+  lo.restart_failed_lines = false;
+  VesselLockstep run(s, o, lo);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const PoseSample& ps : samples) {
+    const VesselLockstep::Result r = run.onSample(ps.t, ps.pose, &ps.twist);
+    ASSERT_TRUE(r.outcome == VesselLockstep::Outcome::Started || r.outcome == VesselLockstep::Outcome::Advanced)
+        << "t = " << ps.t << ": " << r.message;
+    for (const StaticResult& line : run.lines())
+      for (const auto& node : line.nodes) lowest = std::min(lowest, node.tension);
+  }
+  EXPECT_DOUBLE_EQ(run.solverTime(), samples.back().t - samples.front().t);
+  EXPECT_GE(lowest, 0.0) << "chain does not push";
+  long fallback = 0;
+  for (std::size_t i = 0; i < s.lines.size(); ++i) fallback += run.dynamics().lineFallbackSteps(i);
+  std::printf("small vessel, Hs 4 m for 60 s: %ld fallback steps\n", fallback);
+}
