@@ -39,6 +39,7 @@ void LockstepMonitor::add(Counts& a, const Counts& b) {
   a.start_failures += b.start_failures;
   a.steps += b.steps;
   a.cuts += b.cuts;
+  a.fallback += b.fallback;
   a.newton += b.newton;
   a.slack_events += b.slack_events;
   a.sim += b.sim;
@@ -85,6 +86,7 @@ void LockstepMonitor::onResult(const LockstepDriver::Result& r, double wall_now,
   window_.wall += wall_spent;
   window_.steps += r.report.steps;
   window_.cuts += r.report.cuts;
+  window_.fallback += r.report.fallback_steps;
   window_.newton += r.report.newton_iterations;
   using R = LockstepDriver::Reason;
   namespace k = lockstep_keys;
@@ -213,6 +215,7 @@ LockstepMonitor::Summary LockstepMonitor::summarise(double wall_now) {
   kv("solver failures (window / total)", std::to_string(w.failures) + " / " + std::to_string(total_.failures));
   kv("steps (window / total)", std::to_string(w.steps) + " / " + std::to_string(total_.steps));
   kv("step cuts (window / total)", std::to_string(w.cuts) + " / " + std::to_string(total_.cuts));
+  kv("fallback steps (window / total)", std::to_string(w.fallback) + " / " + std::to_string(total_.fallback));
   kv("Newton iterations (window / total)", std::to_string(w.newton) + " / " + std::to_string(total_.newton));
   kv("Newton iterations per step (window)", w.steps > 0 ? fmt(static_cast<double>(w.newton) / w.steps) : "-");
   tally_.closeWindow(s.values);

@@ -21,6 +21,7 @@ VesselMonitor::VesselMonitor(std::vector<std::string> line_names, const VesselMo
       options_(options),
       line_failures_window_(names_.size(), 0),
       line_failures_total_(names_.size(), 0),
+      line_fallback_total_(names_.size(), 0),
       line_last_failure_(names_.size()),
       top_tension_(names_.size(), 0.0),
       max_top_tension_(names_.size(), 0.0),
@@ -184,6 +185,10 @@ std::string VesselMonitor::utilizationText(std::size_t i) const {
          " (max tension " + fmt(max_tension_[i], "%.1f") + " N)";
 }
 
+void VesselMonitor::onFallbackSteps(const std::vector<long>& per_line_total) {
+  if (per_line_total.size() == line_fallback_total_.size()) line_fallback_total_ = per_line_total;
+}
+
 std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
   const Counts w = window_;
   add(total_, w);
@@ -227,6 +232,13 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
   kv(s, "restarts (window / total)", std::to_string(w.restarts) + " / " + std::to_string(total_.restarts));
   kv(s, "line failures (window / total)", std::to_string(w.failures) + " / " + std::to_string(total_.failures));
   tally_.closeWindow(s.values);
+  {
+    std::string text;
+    for (std::size_t i = 0; i < names_.size(); ++i)
+      if (line_fallback_total_[i] > 0)
+        text += (text.empty() ? "fallback steps: " : ", ") + std::to_string(line_fallback_total_[i]) + " on " + names_[i];
+    kv(s, "fallback steps (total)", text.empty() ? "none" : text);
+  }
   kv(s, "seconds since last motion [s]", ever_received_ ? fmt(quiet, "%.3g") : "-");
   kv(s, "last event", last_event_.empty() ? "none" : last_event_);
   out.push_back(s);
@@ -246,6 +258,7 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
     kv(l, "utilization (T / MBL)", have_peaks_ && utilization_[i] >= 0.0 ? fmt(utilization_[i], "%.4g") : "-");
     kv(l, "utilization (max, total)", peak_utilization_[i] >= 0.0 ? fmt(peak_utilization_[i], "%.4g") : "-");
     kv(l, "converged", failed ? "false" : "true");
+    kv(l, "fallback steps (total)", std::to_string(line_fallback_total_[i]));
     kv(l, "failures (window / total)",
        std::to_string(line_failures_window_[i]) + " / " + std::to_string(line_failures_total_[i]));
     kv(l, "last failure", line_last_failure_[i].empty() ? "none" : line_last_failure_[i]);
@@ -264,3 +277,4 @@ bool isRunStatusName(const std::string& status_name, const std::string& node) {
 
 }  // namespace ros_bridge
 }  // namespace mooring_dynamics
+

@@ -314,6 +314,9 @@ void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& 
     }
   monitor_->onResult(r, wallNow(), wall_spent, advanced, r.publish ? &top : nullptr, lockstep_->solverTime(),
                      r.publish ? &peaks : nullptr);
+  std::vector<long> fallback(system_.lines.size(), 0);
+  for (std::size_t i = 0; i < fallback.size(); ++i) fallback[i] = lockstep_->dynamics().lineFallbackSteps(i);
+  monitor_->onFallbackSteps(fallback);
   const double ms = wall_spent * 1000.0;
   switch (r.outcome) {
     case O::Dropped:

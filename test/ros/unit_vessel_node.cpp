@@ -173,6 +173,16 @@ TEST(VesselMonitor, CountsDropsAndNamesTheFailedLine) {
   EXPECT_EQ(s[2].line, "a_2");
   EXPECT_EQ(valueOf(s[2], "top tension [N]"), "2");
   EXPECT_EQ(s[3].level, rb::VesselMonitor::OK);
+  EXPECT_EQ(valueOf(s[0], "fallback steps (total)"), "none");
+
+  // Fallback steps (docs/method.md "Slack and snap"): a value per line and named in the overall
+  // status, not a warning (a storm's slack-and-snap steps are expected).
+  m.onFallbackSteps({0, 3, 1});
+  s = m.summarise(0.45);
+  EXPECT_EQ(valueOf(s[0], "fallback steps (total)"), "fallback steps: 3 on a_2, 1 on b");
+  EXPECT_EQ(valueOf(s[2], "fallback steps (total)"), "3");
+  EXPECT_EQ(valueOf(s[1], "fallback steps (total)"), "0");
+  EXPECT_EQ(s[2].level, rb::VesselMonitor::OK);
 
   EXPECT_EQ(m.failedLine("restarted from statics after a failure: t = 1.2 s: line a_2: step failed"), 1);
   EXPECT_EQ(m.failedLine("no line here"), -1);

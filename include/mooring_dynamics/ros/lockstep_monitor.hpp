@@ -101,7 +101,7 @@ class LockstepMonitor {
  private:
   struct Counts {
     long samples = 0, published = 0, dropped = 0, rejected = 0, reinit = 0, failures = 0, start_failures = 0;
-    long steps = 0, cuts = 0, newton = 0, slack_events = 0;
+    long steps = 0, cuts = 0, newton = 0, slack_events = 0, fallback = 0;
     double sim = 0.0, wall = 0.0;  ///< solver time advanced, wall time spent [s]
   };
   static void add(Counts& a, const Counts& b);

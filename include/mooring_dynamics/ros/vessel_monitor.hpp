@@ -93,6 +93,11 @@ class VesselMonitor {
                 const std::vector<double>* top_tension, double solver_time,
                 const std::vector<core::TensionPeak>* peaks = nullptr);
 
+  /// Each line's fallback steps so far (SystemDynamics::lineFallbackSteps, line order): reported
+  /// per line and, over all lines, as "fallback steps: 3 on bow_port_2" (a value, not a warning:
+  /// a storm's slack-and-snap steps are expected; docs/method.md "Slack and snap").
+  void onFallbackSteps(const std::vector<long>& per_line_total);
+
   /// Overall status then one per line, for the window since the last call; starts a new window.
   std::vector<Status> summarise(double wall_now);
 
@@ -125,6 +130,7 @@ class VesselMonitor {
   std::string last_request_;
   bool last_failure_kept_ = true;  ///< the last failure kept the last good state (else: restarted)
   std::vector<long> line_failures_window_, line_failures_total_;
+  std::vector<long> line_fallback_total_;
   std::vector<std::string> line_last_failure_;
   std::vector<double> top_tension_, max_top_tension_;
   bool have_state_ = false;

@@ -296,8 +296,9 @@ void toBoxState(const DynamicSolver3D::Impl& im, const Lumped& L, const Eigen::V
     }
   }
   // A free end carries no tension: its strain is the material's at zero tension.
-  const bool free_top = im.upper->name() == "released top";
-  const bool free_low = im.lower->name() == "released lower end" || im.lower->name() == "free end";
+  const std::string top = im.upper->name(), low = im.lower->name();
+  const bool free_top = top == "released top";
+  const bool free_low = low == "released lower end" || low == "free end";
   for (int j = 0; j < n; ++j) {
     double* y = Yout.data() + N * j;
     const double* y0 = Y0.data() + N * j;
