@@ -3,8 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -521,11 +519,11 @@ void addReport(StepReport& total, const StepReport& rep) {
   total.message = rep.message;
 }
 
-/// One attempted step of size dt from the accepted state; on success the state advances.
 /// Newton iterations of the first implicit step after a fallback step: a line that is taut again
 /// converges in a handful (the state is the lumped line's, close to the box solution).
 constexpr int kRetryIterations = 10;
 
+/// One attempted step of size dt from the accepted state; on success the state advances.
 bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   const double t_new = im.t + dt;
   if (!winchBeginStep(im, t_new, rep.message)) return false;
@@ -582,7 +580,8 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
 StepReport DynamicSolver3D::advanceTo(double t_end) {
   Impl& im = *impl_;
   // The fallback (dynamics3d_fallback.cpp) takes what is left of a base step that fails at
-  // the smallest step size; right after a fallback step a failed base step goes to it at once.
+  // dynamics.fallback_after_cuts cuts; right after a fallback step a failed base step goes to it
+  // at once.
   struct Fallback {
     Impl* im;
     int levels(int max_levels) const {

@@ -80,14 +80,28 @@ struct Water3 {
 
 double sqr(double a) { return a * a; }
 
+/// What the fallback does with the line's ends: held on their paths, or free (released).
+struct Ends {
+  std::string top, low;  ///< the end conditions' names
+  bool top_held, top_free, low_held, low_free;
+};
+Ends endsOf(const DynamicSolver3D::Impl& im) {
+  Ends e;
+  e.top = im.upper->name();
+  e.low = im.lower->name();
+  e.top_held = e.top == "position top" || e.top == "tow point";
+  e.top_free = e.top == "released top";
+  e.low_held = e.low == "anchor" || e.low == "moving anchor";
+  e.low_free = e.low == "released lower end" || e.low == "free end";
+  return e;
+}
+
 }  // namespace
 
 std::string fallbackUnavailable(const DynamicSolver3D::Impl& im) {
-  const std::string top = im.upper->name(), low = im.lower->name();
-  const bool top_ok = top == "position top" || top == "tow point" || top == "released top";
-  const bool low_ok = low == "anchor" || low == "moving anchor" || low == "released lower end" || low == "free end";
-  if (!top_ok) return "no fallback step for a line whose top is a " + top;
-  if (!low_ok) return "no fallback step for a line whose lower end is a " + low;
+  const Ends e = endsOf(im);
+  if (!(e.top_held || e.top_free)) return "no fallback step for a line whose top is a " + e.top;
+  if (!(e.low_held || e.low_free)) return "no fallback step for a line whose lower end is a " + e.low;
   if (im.winch.rate != 0.0) return "no fallback step while the winch runs";
   return "";
 }
@@ -296,14 +310,12 @@ void toBoxState(const DynamicSolver3D::Impl& im, const Lumped& L, const Eigen::V
     }
   }
   // A free end carries no tension: its strain is the material's at zero tension.
-  const std::string top = im.upper->name(), low = im.lower->name();
-  const bool free_top = top == "released top";
-  const bool free_low = low == "released lower end" || low == "free end";
+  const Ends ends = endsOf(im);
   for (int j = 0; j < n; ++j) {
     double* y = Yout.data() + N * j;
     const double* y0 = Y0.data() + N * j;
     if (eps_cnt[j] > 0.0) y[EPS] = eps_sum[j] / eps_cnt[j];
-    if ((j == n - 1 && free_top) || (j == 0 && free_low)) y[EPS] = im.mat(j).strainAt(0.0);
+    if ((j == n - 1 && ends.top_free) || (j == 0 && ends.low_free)) y[EPS] = im.mat(j).strainAt(0.0);
     // Frame: the last frame turned by the smallest rotation from its tangent to the new one.
     double R0[9];
     quat::matrix(y0 + Q0, R0);
@@ -390,21 +402,16 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   lumpLine(im, L);
   // Water at the nodes' start positions at both ends of the step.
   std::vector<Water3> water(static_cast<std::size_t>(n));
-  im.wave_cache.setTime(t0);
-  for (int j = 0; j < n; ++j) {
-    const Water w = im.waterAt(j, L.x[j].x(), L.x[j].y(), L.x[j].z());
-    water[static_cast<std::size_t>(j)].w0 = Vec3(w.w[0], w.w[1], w.w[2]);
-  }
-  im.wave_cache.setTime(t1);
-  for (int j = 0; j < n; ++j) {
-    const Water w = im.waterAt(j, L.x[j].x(), L.x[j].y(), L.x[j].z());
-    water[static_cast<std::size_t>(j)].w1 = Vec3(w.w[0], w.w[1], w.w[2]);
+  for (const auto& [time, slot] : {std::make_pair(t0, &Water3::w0), std::make_pair(t1, &Water3::w1)}) {
+    im.wave_cache.setTime(time);
+    for (int j = 0; j < n; ++j) {
+      const Water w = im.waterAt(j, L.x[j].x(), L.x[j].y(), L.x[j].z());
+      water[static_cast<std::size_t>(j)].*slot = Vec3(w.w[0], w.w[1], w.w[2]);
+    }
   }
   // Which ends are held: the top on its path, the anchor where it is (or on its path).
-  const std::string top = im.upper->name();
-  const bool top_held = top == "position top" || top == "tow point";
-  const std::string low = im.lower->name();
-  const bool anchor_held = low == "anchor" || low == "moving anchor";
+  const Ends ends = endsOf(im);
+  const bool top_held = ends.top_held, anchor_held = ends.low_held;
   const Vec3 anchor0 = L.x[0];
   const std::function<TopState(double)>* anchor_path = im.lower_path ? &im.lower_path : nullptr;
   // Tie junction nodes (h = 0) to the node below them.
