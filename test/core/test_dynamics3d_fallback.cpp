@@ -65,6 +65,39 @@ TEST(Dynamics3DFallback, WithoutTheFallbackTheSameRunStops) {
   EXPECT_NE(r.message.find("cuts"), std::string::npos) << r.message;
 }
 
+// While the line stays folded after a fallback step (a node's interval shorter than unstretched,
+// hence a node at zero tension), the next base step goes to the fallback without an implicit try
+// (no Newton iteration), at most 10 base steps in a row (kMaxSkippedTries in
+// dynamics3d_fallback.cpp), and then the implicit step is tried again.
+TEST(Dynamics3DFallback, AFoldedLineStaysInTheFallbackWithoutImplicitTries) {
+  const Problem p = heavedSlackNoCompression(12.0);
+  DynamicSolver3D solver(p);
+  constexpr int kMaxSkippedInARow = 10;  // kMaxSkippedTries
+  int skipped = 0, in_a_row = 0, longest_run = 0;
+  const int steps = static_cast<int>(std::lround(p.dynamics.duration / p.dynamics.dt));
+  for (int k = 1; k <= steps; ++k) {
+    const auto before = solver.totals();
+    const StaticResult state = solver.snapshot();
+    const StepReport rep = solver.advanceTo(k * p.dynamics.dt);
+    ASSERT_TRUE(rep.ok) << rep.message;
+    const auto after = solver.totals();
+    if (after.newton_iterations == before.newton_iterations) {
+      // No implicit try: a fallback step, right after one, from a folded line.
+      EXPECT_EQ(after.fallback_steps, before.fallback_steps + 1) << "step " << k;
+      EXPECT_GT(before.fallback_steps, 0) << "step " << k;
+      double least = std::numeric_limits<double>::infinity();
+      for (const auto& node : state.nodes) least = std::min(least, node.tension);
+      EXPECT_EQ(least, 0.0) << "step " << k << ": skipped the implicit try on a line with no slack node";
+      ++skipped;
+      longest_run = std::max(longest_run, ++in_a_row);
+    } else {
+      in_a_row = 0;
+    }
+  }
+  EXPECT_GT(skipped, 0) << "the heave folds the line for several base steps in every cycle";
+  EXPECT_LE(longest_run, kMaxSkippedInARow);
+}
+
 TEST(Dynamics3DFallback, RunsWithFallbackStepsAreBitIdenticalOnOneAndTwoThreads) {
   Problem p = heavedSlackNoCompression(4.0);
   const DynamicSeries a = runDynamic3D(p);

@@ -581,16 +581,20 @@ StepReport DynamicSolver3D::advanceTo(double t_end) {
   Impl& im = *impl_;
   // The fallback (dynamics3d_fallback.cpp) takes what is left of a base step that fails at
   // dynamics.fallback_after_cuts cuts; right after a fallback step a failed base step goes to it
-  // at once.
+  // at once, and while the line is still folded (stayInFallback) the base step goes to it
+  // without an implicit try.
   struct Fallback {
     Impl* im;
     int levels(int max_levels) const {
       if (!im->opt.fallback) return max_levels;
+      if (stayInFallback(*im)) return -1;
       return im->in_fallback ? 0 : std::min(max_levels, im->opt.fallback_after_cuts);
     }
     bool operator()(double dt, StepReport& rep) const {
       if (!im->opt.fallback) return false;
+      const bool skipped = stayInFallback(*im);
       if (!fallbackStep(*im, dt, rep)) return false;
+      im->fallback_skipped = skipped ? im->fallback_skipped + 1 : 0;
       breakOnTension(*im);
       return true;
     }
@@ -645,6 +649,7 @@ struct DynamicSolver3D::Saved {
   int parted = -1;
   double last_dt = 0.0;
   bool in_fallback = false;
+  int fallback_skipped = 0;
   Totals totals;
   WinchSaved winch;  ///< the mesh a winch changes, its program and length
 };
@@ -667,6 +672,7 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->parted = im.parted;
   s->last_dt = im.last_dt;
   s->in_fallback = im.in_fallback;
+  s->fallback_skipped = im.fallback_skipped;
   s->totals = im.totals;
   s->winch = winchSave(im);
   return s;
@@ -692,6 +698,7 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.upper->setState(s.upper_state);
   im.last_dt = s.last_dt;
   im.in_fallback = s.in_fallback;
+  im.fallback_skipped = s.fallback_skipped;
   im.totals = s.totals;
   winchRestore(im, s.winch);
   // A kept factorization (modified Newton) stays: it is still a Jacobian of this step size.

@@ -105,7 +105,8 @@ struct NoFallback {
 /// accepted state; on_cut() counts a cut. A base step that fails at `max_levels` cuts goes to
 /// fallback(dt_left, report) -> bool for the rest of the base step (the 3-D solver's lumped-mass
 /// step); fallback.levels(max_levels) says how many cuts a base step gets before that (fewer
-/// than max_levels when the fallback is there, none right after a fallback step). On failure the report says why and t stays at the last converged time.
+/// than max_levels when the fallback is there, none right after a fallback step, and -1 for a
+/// base step that goes to the fallback without an implicit try). On failure the report says why and t stays at the last converged time.
 template <class TryStep, class OnCut, class Fallback = NoFallback>
 StepReport advanceWithCuts(double& t, double base, int max_levels, double t_end, TryStep try_step, OnCut on_cut,
                            Fallback fallback = Fallback()) {
@@ -121,7 +122,7 @@ StepReport advanceWithCuts(double& t, double base, int max_levels, double t_end,
     const double dt = std::min(base, t_end - t);
     const double t_base_end = t + dt;
     const int levels = fallback.levels(max_levels);
-    if (!detail::stepWithCuts(t, dt, 0, levels, rep, try_step, on_cut)) {
+    if (levels < 0 || !detail::stepWithCuts(t, dt, 0, levels, rep, try_step, on_cut)) {
       if (!fallback(t_base_end - t, rep)) {
         rep.ok = false;
         return rep;
