@@ -332,7 +332,7 @@ struct SnapCase {
   double peak() const { return W * (1.0 + std::sqrt(1.0 + 2.0 * k() * h / W)); }
 };
 
-Problem snapProblem(const SnapCase& c, bool compression) {
+Problem snapProblem(const SnapCase& c, bool compression, double spacing = 2.5) {
   Problem p;
   p.formulation = Formulation::ThreeD;
   p.environment.depth = 200.0;
@@ -348,7 +348,7 @@ Problem snapProblem(const SnapCase& c, bool compression) {
   p.materials.push_back(m);
   Segment s;
   s.length = c.L;
-  s.spacing = 2.5;  // see the test
+  s.spacing = spacing;
   p.segments.push_back(s);
   Body b;
   b.name = "weight";
@@ -375,28 +375,31 @@ Problem snapProblem(const SnapCase& c, bool compression) {
 }  // namespace
 
 TEST(Dynamics3D, SnapLoadOfABodyDroppedOnASlackRopeMatchesTheClosedForm) {
-  // Tolerance: the closed form is a massless spring; the rope here (0.1 kg, 4 intervals) adds its
-  // own axial modes (~500 rad/s, damped by lambda_inf = -0.5) and the slack ramp at most
-  // EA kSlackStrain / 8 = 0.01 N: measured -0.1 %. 3 % bounds the rope-mode ripple on the peak
-  // (measured +1.0 % and +2.3 % on 2.5 m and 2 m meshes with a 10x wider slack ramp).
-  // Known limit (docs/method.md, "Slack lines"): on 1 m, 2 m and 5 m meshes this case stops at
-  // t = 0.11 to 0.13 s, when the point stops above the wholly slack rope (Newton does not
-  // converge); the 2.5 m mesh is the one that runs.
-  constexpr double kSnapRelTol = 0.03;
+  // Tolerance: the closed form is a massless spring; the rope here (0.1 kg) adds its own axial
+  // modes (~500 rad/s, damped by lambda_inf = -0.5) and the slack ramp at most EA kSlackStrain / 8
+  // = 0.01 N. Measured on the 1, 2, 2.5 and 5 m meshes: +0.30, +0.39, -0.12 and -0.01 %. On all but
+  // the 2.5 m mesh the rope folds under the dropping point and the fallback step (docs/method.md
+  // "Slack and snap: the fallback step") takes the steps the implicit one cannot; the peak does
+  // not depend on which took them.
+  constexpr double kSnapRelTol = 0.005;
   const SnapCase c;
-  const DynamicSeries r = runDynamic3D(snapProblem(c, false));
-  ASSERT_TRUE(r.completed) << r.message;
-  double peak = 0.0, slack_min = 1e300;
-  for (std::size_t i = 0; i < r.t.size(); ++i) {
-    peak = std::max(peak, r.top_tension[i]);
-    if (r.t[i] > 0.05 && r.t[i] < 0.3) slack_min = std::min(slack_min, r.top_tension[i]);
+  for (double spacing : {1.0, 2.0, 2.5, 5.0}) {
+    SCOPED_TRACE("spacing " + std::to_string(spacing) + " m");
+    const DynamicSeries r = runDynamic3D(snapProblem(c, false, spacing));
+    ASSERT_TRUE(r.completed) << r.message;
+    double peak = 0.0, slack_min = 1e300;
+    for (std::size_t i = 0; i < r.t.size(); ++i) {
+      peak = std::max(peak, r.top_tension[i]);
+      if (r.t[i] > 0.05 && r.t[i] < 0.3) slack_min = std::min(slack_min, r.top_tension[i]);
+    }
+    std::printf("snap load, %.1f m mesh: peak %.1f N, closed form %.1f N; tension while slack %.3g N; %ld fallback steps\n",
+                spacing, peak, c.peak(), slack_min, static_cast<long>(r.fallback_steps));
+    EXPECT_NEAR(peak, c.peak(), kSnapRelTol * c.peak());
+    EXPECT_GE(slack_min, 0.0);         // a rope never pushes
+    EXPECT_LT(slack_min, 0.01 * c.W);  // and is slack during the fall
+    EXPECT_GE(r.peak.max_tension, peak);  // the run's peak covers the whole line
+    EXPECT_GT(r.peak.slack_length, 0.9 * c.L);
   }
-  std::printf("snap load: peak %.1f N, closed form %.1f N; tension while slack %.3g N\n", peak, c.peak(), slack_min);
-  EXPECT_NEAR(peak, c.peak(), kSnapRelTol * c.peak());
-  EXPECT_GE(slack_min, 0.0);         // a rope never pushes
-  EXPECT_LT(slack_min, 0.01 * c.W);  // and is slack during the fall
-  EXPECT_GE(r.peak.max_tension, peak);  // the run's peak covers the whole line
-  EXPECT_GT(r.peak.slack_length, 0.9 * c.L);
 
   // A rope that carries compression pushes the body down while the tow point drops: a larger
   // peak (measured +8 %), outside the tolerance.

@@ -36,8 +36,9 @@
 // step starts from there; while the line stays folded it fails and falls back again.
 //
 // Not taken by the fallback (the step then fails as before, with the reason added to the
-// message): a force, buoy, body or drifting-buoy top, a free lower end with a body, a step in
-// which the winch runs (fallbackUnavailable()).
+// message): a force, buoy, body or drifting-buoy top, a step in which the winch runs
+// (fallbackUnavailable()). A body at a free lower end is a lumped mass (its mass plus added
+// mass) at node 0 with its weight and drag.
 #include "dynamics3d_impl.hpp"
 
 #include <algorithm>
@@ -64,10 +65,10 @@ constexpr double kCourant = 0.4;
 /// 297 of the 302 tries from a folded state failed, and 11 of the 15 from an unfolded one
 /// converged; the five folded ones that converged were within -1.1e-4 of zero.
 constexpr double kFoldedStrain = 1e-3;
-/// At most this many base steps in a row go to the fallback without an implicit try (1 s at
-/// the shipped dt of 0.1 s): a heap of chain lying on the seabed can keep a line "folded" long
-/// after the implicit step could take it again.
-constexpr int kMaxSkippedTries = 10;
+/// For at most this long [s] in a row base steps go to the fallback without an implicit try: a
+/// heap of chain lying on the seabed can keep a line "folded" long after the implicit step could
+/// take it again.
+constexpr double kMaxSkippedTime = 1.0;
 /// A chord shorter than this fraction of its interval has no direction of its own [-].
 constexpr double kShortChord = 1e-6;
 
@@ -102,8 +103,15 @@ Ends endsOf(const DynamicSolver3D::Impl& im) {
   e.top_held = e.top == "position top" || e.top == "tow point";
   e.top_free = e.top == "released top";
   e.low_held = e.low == "anchor" || e.low == "moving anchor";
-  e.low_free = e.low == "released lower end" || e.low == "free end";
+  e.low_free = e.low == "released lower end" || e.low == "free end" || e.low == "free end with body";
   return e;
+}
+
+/// The body at a free lower end (a tow body, a weight on a hanging line), or nullptr.
+const Body* endBody(const DynamicSolver3D::Impl& im) {
+  if (im.problem.end_body == Problem::kNoBody || std::strcmp(im.lower->name(), "free end with body") != 0)
+    return nullptr;
+  return &im.problem.bodies[im.problem.end_body];
 }
 
 }  // namespace
@@ -154,6 +162,7 @@ void lumpLine(const DynamicSolver3D::Impl& im, Lumped& L) {
       }
     }
   }
+  if (const Body* b = endBody(im)) L.body_mass[0] += b->mass + b->added_mass;
 }
 
 /// Unit tangents at the nodes: the mean of the adjacent chords' directions (one-sided at the
@@ -234,6 +243,18 @@ void lumpedForces(const DynamicSolver3D::Impl& im, const std::vector<Water3>& wa
                         std::max(m.cdn * vnn, eq2d::kPi * m.cdt * std::abs(vt));
     L.drag_rate[j] += 0.25 * rate;
     L.drag_rate[j + 1] += 0.25 * rate;
+  }
+  // The body at a free lower end: its weight and drag (addBodyLoad, as the box rows' end balance)
+  // on the velocity relative to the water at node 0, taken semi-implicitly as the line's.
+  if (const Body* b = endBody(im)) {
+    const Vec3 wv = (1.0 - w) * water[0].w0 + w * water[0].w1;
+    const Vec3 r = wv - L.v[0];
+    double P[3] = {0.0, 0.0, 0.0};
+    eq3d::addBodyLoad(env, *b, L.tangent[0].data(), r.data(), P);
+    L.f[0] += Vec3(P[0], P[1], P[2]);
+    const double q = 0.5 * rho * 0.25 * eq2d::kPi * sqr(b->diameter);
+    const double cd = b->drag == Body::Drag::Sphere ? b->cd : std::max(b->cdn, b->cdt);
+    L.drag_rate[0] += q * cd * 2.0 * r.norm();
   }
   // The seabed (eq. 35-36 with the box rows' contact onset) on each node's tributary length.
   for (int j = 0; j < n; ++j) {
@@ -510,7 +531,7 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
 }
 
 bool stayInFallback(const DynamicSolver3D::Impl& im) {
-  if (!im.in_fallback || im.fallback_skipped >= kMaxSkippedTries) return false;
+  if (!im.in_fallback || im.fallback_skipped * im.opt.dt >= kMaxSkippedTime) return false;
   for (int i = 0; i + N <= static_cast<int>(im.Y.size()); i += N)
     if (im.Y[i + EPS] < -kFoldedStrain) return true;
   return false;

@@ -167,7 +167,7 @@ std::string fallbackUnavailable(const DynamicSolver3D::Impl& im);
 bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep);
 /// After a fallback step: whether the next base step goes to the fallback at once, without an
 /// implicit try (the line is still folded: some node shorter than its unstretched length by
-/// more than kFoldedStrain, and fewer than kMaxSkippedTries such steps in a row).
+/// more than kFoldedStrain, and for less than kMaxSkippedTime in a row).
 bool stayInFallback(const DynamicSolver3D::Impl& im);
 
 // The winch (dynamics3d_winch.cpp).
