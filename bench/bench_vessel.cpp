@@ -109,18 +109,8 @@ void BM_SpreadMooringStorm(benchmark::State& state) {
     state.SkipWithError(e.what());
     return;
   }
-  md::StormMotionOptions storm;
-  storm.hs = hs;
-  storm.tp = hs <= 2 ? 8.0 : hs <= 4 ? 9.0 : hs <= 6 ? 10.0 : 12.0;
-  storm.heading_deg = 30.0;
-  storm.seed = 1;
-  storm.duration = 60.0;
-  storm.dt = 0.1;
-  storm.f_max_factor = 2.0;
-  storm.mean_offset = 4.0;
-  storm.mean_offset_heading_deg = 210.0;
-  storm.drift_amplitude = 3.0;
-  const std::vector<md::PoseSample> samples = md::generateStormMotion(storm);
+  const double tp = hs <= 2 ? 8.0 : hs <= 4 ? 9.0 : hs <= 6 ? 10.0 : 12.0;
+  const std::vector<md::PoseSample> samples = md::generateStormMotion(md::mooringStorm(hs, tp, 30.0, 1, 60.0));
   md::VesselLockstepOptions lo;
   lo.threads = threads;
   lo.restart_failed_lines = false;

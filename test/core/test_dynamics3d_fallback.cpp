@@ -124,16 +124,9 @@ TEST(Dynamics3DFallback, SmallVesselRidesOutAShortHs4StormWithChainThatDoesNotPu
   for (Material& m : s.materials) m.compression = false;
   DynamicOptions o = s.dynamics;
   o.fallback_after_cuts = 1;
-  StormMotionOptions storm;
-  storm.hs = 4.0;
-  storm.tp = 9.0;
-  storm.heading_deg = 30.0;
-  storm.seed = 3;
-  storm.duration = 60.0;
-  storm.dt = 0.1;
-  storm.f_max_factor = 2.0;
-  storm.mean_offset = 2.0;
-  storm.mean_offset_heading_deg = 210.0;
+  StormMotionOptions storm = mooringStorm(4.0, 9.0, 30.0, 3, 60.0);
+  storm.mean_offset = 2.0;  // a small hull: 2 m, no drift
+  storm.drift_amplitude = 0.0;
   const std::vector<PoseSample> samples = generateStormMotion(storm);
   VesselLockstepOptions lo;
   lo.restart_failed_lines = false;
@@ -160,18 +153,7 @@ TEST(Dynamics3DFallback, SpreadMooringRidesOutAShortHs6StormWithoutSpuriousSnapL
   // sinks, and the tops go wholly slack and snap (the storm of the issue, 40 s of it).
   SystemProblem s = loadSystemFromFile("config/spread_mooring.yaml");
   DynamicOptions o = s.dynamics;
-  StormMotionOptions storm;
-  storm.hs = 6.0;
-  storm.tp = 10.0;
-  storm.heading_deg = 30.0;
-  storm.seed = 1;
-  storm.duration = 40.0;
-  storm.dt = 0.1;
-  storm.f_max_factor = 2.0;
-  storm.mean_offset = 4.0;
-  storm.mean_offset_heading_deg = 210.0;
-  storm.drift_amplitude = 3.0;
-  const std::vector<PoseSample> samples = generateStormMotion(storm);
+  const std::vector<PoseSample> samples = generateStormMotion(mooringStorm(6.0, 10.0, 30.0, 1, 40.0));
   VesselLockstepOptions lo;
   lo.restart_failed_lines = false;
   lo.threads = 2;

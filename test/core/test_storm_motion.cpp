@@ -384,3 +384,19 @@ TEST(StormMotion, EachBadFieldIsNamed) {
 }
 
 }  // namespace
+
+TEST(StormMotion, MooringStormSitsDownWaveWithADrift) {
+  // The waves' mean drift force pushes the hull the way they travel: the offset points there.
+  for (double heading : {30.0, 150.0, 300.0}) {
+    const StormMotionOptions o = mooringStorm(6.0, 10.0, heading, 7, 120.0);
+    EXPECT_EQ(o.validate(), "");
+    EXPECT_EQ(o.hs, 6.0);
+    EXPECT_EQ(o.tp, 10.0);
+    EXPECT_EQ(o.seed, 7u);
+    EXPECT_EQ(o.duration, 120.0);
+    EXPECT_EQ(o.mean_offset, 4.0);
+    EXPECT_EQ(o.drift_amplitude, 3.0);
+    EXPECT_EQ(o.f_max_factor, 2.0);
+    EXPECT_EQ(o.mean_offset_heading_deg, heading);
+  }
+}

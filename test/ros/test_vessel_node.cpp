@@ -617,18 +617,7 @@ TEST(VesselNode, ReleaseServiceLetsALineGo) {
 TEST(VesselNode, RidesOutAnHs6StormFromABagWithFallbackCountsInDiagnostics) {
   if (g_mode != "storm") GTEST_SKIP() << "test_vessel_node.storm.test only";
   const std::string problem = std::string(MD_SOURCE_DIR) + "/config/spread_mooring.yaml";
-  core::StormMotionOptions storm;
-  storm.hs = 6.0;
-  storm.tp = 10.0;
-  storm.heading_deg = 30.0;
-  storm.seed = 1;
-  storm.duration = 40.0;
-  storm.dt = 0.1;
-  storm.f_max_factor = 2.0;
-  storm.mean_offset = 4.0;
-  storm.mean_offset_heading_deg = 210.0;
-  storm.drift_amplitude = 3.0;
-  const std::vector<core::PoseSample> motion = core::generateStormMotion(storm);
+  const std::vector<core::PoseSample> motion = core::generateStormMotion(core::mooringStorm(6.0, 10.0, 30.0, 1, 40.0));
   std::vector<Sample> tr;
   for (const core::PoseSample& m : motion) {
     Sample x;

@@ -175,6 +175,20 @@ PoseSample StormMotion::at(double t) const {
   return s;
 }
 
+StormMotionOptions mooringStorm(double hs, double tp, double heading_deg, std::uint32_t seed, double duration) {
+  StormMotionOptions o;
+  o.hs = hs;
+  o.tp = tp;
+  o.heading_deg = heading_deg;
+  o.seed = seed;
+  o.duration = duration;
+  o.f_max_factor = 2.0;
+  o.mean_offset = 4.0;
+  o.mean_offset_heading_deg = heading_deg;
+  o.drift_amplitude = 3.0;
+  return o;
+}
+
 std::vector<PoseSample> generateStormMotion(const StormMotionOptions& options) {
   const StormMotion motion(options);
   const long n = static_cast<long>(std::floor(options.duration / options.dt + 1e-9));

@@ -109,6 +109,13 @@ class StormMotion {
 /// std::invalid_argument for invalid options.
 std::vector<PoseSample> generateStormMotion(const StormMotionOptions& options);
 
+/// The storm of a moored vessel as the tests, benchmarks and scripts/storms run it: JONSWAP Hs
+/// [m], Tp [s], waves toward heading_deg, components up to 2 fp (a hull hardly heaves above), a
+/// 4 m mean offset down-wave (toward heading_deg: the waves' mean drift force pushes the hull the
+/// way they travel) with a 3 m slow drift along it, the given seed and duration [s]; everything
+/// else as StormMotionOptions' defaults.
+StormMotionOptions mooringStorm(double hs, double tp, double heading_deg, std::uint32_t seed, double duration);
+
 /// Largest vertical (world z) speed [m/s] of the body-fixed point r_body [m] over the samples:
 /// from each sample's twist (v + omega x R r), or, for a sample without a twist, from central
 /// differences of the point's positions (one-sided at the ends). `at_time` (if given) receives
