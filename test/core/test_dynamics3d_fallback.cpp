@@ -14,6 +14,7 @@
 #include "mooring_dynamics/core/model/storm_motion.hpp"
 #include "mooring_dynamics/core/solvers/dynamics3d.hpp"
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
+#include "mooring_dynamics/core/solvers/vessel_statics.hpp"
 
 using namespace mooring_dynamics::core;
 
@@ -95,7 +96,9 @@ TEST(Dynamics3DFallback, AFoldedLineStaysInTheFallbackWithoutImplicitTries) {
     }
   }
   EXPECT_GT(skipped, 0) << "the heave folds the line for several base steps in every cycle";
-  EXPECT_LE(longest_run * p.dynamics.dt, kMaxSkippedTime + 1e-9);
+  std::printf("heaved slack line: %d base steps without an implicit try, at most %d in a row\n", skipped, longest_run);
+  // The heave keeps the line folded for longer than the cap: the runs stop at it, exactly.
+  EXPECT_EQ(longest_run, static_cast<int>(std::lround(kMaxSkippedTime / p.dynamics.dt)));
 }
 
 TEST(Dynamics3DFallback, RunsWithFallbackStepsAreBitIdenticalOnOneAndTwoThreads) {
@@ -177,16 +180,23 @@ TEST(Dynamics3DFallback, SpreadMooringRidesOutAShortHs6StormWithoutSpuriousSnapL
   EXPECT_GT(fallback, 0) << "the storm folds the bow lines";
   // Hand bound on a snap: a slack top overrun at vertical speed v and jerked taut launches an
   // axial wave of tension v Z, Z = sqrt(EA m) the chain's axial impedance; its reflection off
-  // the anchored end at most doubles it. Above the static top tension, no node may carry more
-  // than 2 v_max Z (v_max the largest vertical speed of the four fairlead corners). A spurious
-  // spike of the box/lumped hand-over (a node displaced in one step) would exceed it many times.
+  // the anchored end at most doubles it. Above the largest static top tension at the farthest
+  // offset (4 m + 3 m drift toward the waves' heading), no node may carry more than 2 v_max Z
+  // (v_max the largest vertical speed of the four fairlead corners). A spurious spike of the
+  // box/lumped hand-over (a node displaced in one step) would exceed it many times.
   const Material& chain = s.materials.at(0);
   double v_max = 0.0;
   for (double x : {45.0, -45.0})
     for (double y : {15.0, -15.0}) v_max = std::max(v_max, maxPointVerticalSpeed(samples, Eigen::Vector3d(x, y, -8.0)));
-  const double bound = start_top + 2.0 * v_max * std::sqrt(chain.EA * chain.mass);
+  RigidPose far;
+  far.position = 7.0 * Eigen::Vector3d(std::cos(30.0 * M_PI / 180.0), std::sin(30.0 * M_PI / 180.0), 0.0);
+  const VesselStaticResult offset = solveVesselStatic(s, far);
+  double static_top = start_top;
+  for (const StaticResult& line : offset.system.lines) static_top = std::max(static_top, line.nodes.back().tension);
+  const double bound = static_top + 2.0 * v_max * std::sqrt(chain.EA * chain.mass);
   std::printf("spread mooring, Hs 6 m for 40 s: %ld fallback steps, largest tension %.0f N, hand bound %.0f N "
-              "(v_max %.2f m/s)\n", fallback, highest, bound, v_max);
+              "(v_max %.2f m/s, static top tension %.0f N at rest, %.0f N at 7 m offset)\n", fallback, highest, bound, v_max,
+              start_top, static_top);
   EXPECT_LT(highest, bound);
   EXPECT_GT(highest, 2.0 * start_top) << "the lines snap well above their static tension";
 }
@@ -225,7 +235,7 @@ double snapEnergy(const Problem& p, const StaticResult& r, const std::vector<Eig
 // only). Energies from the snapshots alone (velocities by central differences of positions).
 TEST(Dynamics3DFallback, EnergyOfASlackSnapCycleIsAccountedFor) {
   // Through the fallback steps: 2 % of the peak strain energy (the storm issue's criterion);
-  // measured -0.36 % at the end, -0.36 % at the peak.
+  // measured -0.24 % at the peak and at the end.
   constexpr double kFallbackBalanceTol = 0.02;
   // Implicit steps only: the jerk that snaps the rope taut rings its own axial modes (~500 rad/s),
   // which lambda_inf = -0.5 damps within a few steps: measured -4.1 % (37 J), the scheme's

@@ -594,7 +594,7 @@ StepReport DynamicSolver3D::advanceTo(double t_end) {
       if (!im->opt.fallback) return false;
       const bool skipped = stayInFallback(*im);
       if (!fallbackStep(*im, dt, rep)) return false;
-      im->fallback_skipped = skipped ? im->fallback_skipped + 1 : 0;
+      im->fallback_skipped_time = skipped ? im->fallback_skipped_time + dt : 0.0;
       breakOnTension(*im);
       return true;
     }
@@ -649,7 +649,7 @@ struct DynamicSolver3D::Saved {
   int parted = -1;
   double last_dt = 0.0;
   bool in_fallback = false;
-  int fallback_skipped = 0;
+  double fallback_skipped_time = 0.0;
   Totals totals;
   WinchSaved winch;  ///< the mesh a winch changes, its program and length
 };
@@ -672,7 +672,7 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->parted = im.parted;
   s->last_dt = im.last_dt;
   s->in_fallback = im.in_fallback;
-  s->fallback_skipped = im.fallback_skipped;
+  s->fallback_skipped_time = im.fallback_skipped_time;
   s->totals = im.totals;
   s->winch = winchSave(im);
   return s;
@@ -698,7 +698,7 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.upper->setState(s.upper_state);
   im.last_dt = s.last_dt;
   im.in_fallback = s.in_fallback;
-  im.fallback_skipped = s.fallback_skipped;
+  im.fallback_skipped_time = s.fallback_skipped_time;
   im.totals = s.totals;
   winchRestore(im, s.winch);
   // A kept factorization (modified Newton) stays: it is still a Jacobian of this step size.

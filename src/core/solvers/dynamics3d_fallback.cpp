@@ -65,7 +65,8 @@ constexpr double kCourant = 0.4;
 /// 297 of the 302 tries from a folded state failed, and 11 of the 15 from an unfolded one
 /// converged; the five folded ones that converged were within -1.1e-4 of zero.
 constexpr double kFoldedStrain = 1e-3;
-/// For at most this long [s] in a row base steps go to the fallback without an implicit try: a
+/// For at most this long [s] of simulated time in a row base steps go to the fallback without an
+/// implicit try (whatever the steps' length: in lockstep every sample ends a step): a
 /// heap of chain lying on the seabed can keep a line "folded" long after the implicit step could
 /// take it again.
 constexpr double kMaxSkippedTime = 1.0;
@@ -340,13 +341,15 @@ void toBoxState(const DynamicSolver3D::Impl& im, const Lumped& L, const Eigen::V
       eps_cnt[k] += 1.0;
     }
   }
-  // A free end carries no tension: its strain is the material's at zero tension.
+  // A free end without a body carries no tension: its strain is the material's at zero tension
+  // (with a body it carries the body's weight and drag: the chord's strain stays).
   const Ends ends = endsOf(im);
+  const bool low_unloaded = ends.low_free && !endBody(im);
   for (int j = 0; j < n; ++j) {
     double* y = Yout.data() + N * j;
     const double* y0 = Y0.data() + N * j;
     if (eps_cnt[j] > 0.0) y[EPS] = eps_sum[j] / eps_cnt[j];
-    if ((j == n - 1 && ends.top_free) || (j == 0 && ends.low_free)) y[EPS] = im.mat(j).strainAt(0.0);
+    if ((j == n - 1 && ends.top_free) || (j == 0 && low_unloaded)) y[EPS] = im.mat(j).strainAt(0.0);
     // Frame: the last frame turned by the smallest rotation from its tangent to the new one.
     double R0[9];
     quat::matrix(y0 + Q0, R0);
@@ -531,9 +534,11 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
 }
 
 bool stayInFallback(const DynamicSolver3D::Impl& im) {
-  if (!im.in_fallback || im.fallback_skipped * im.opt.dt >= kMaxSkippedTime) return false;
-  for (int i = 0; i + N <= static_cast<int>(im.Y.size()); i += N)
-    if (im.Y[i + EPS] < -kFoldedStrain) return true;
+  if (!im.in_fallback || im.fallback_skipped_time >= kMaxSkippedTime * (1.0 - 1e-9)) return false;  // (sums of dt)
+  // Folded: a node of a material without compression (chain, rope: negative strain is slack, not
+  // a compressed rod) shorter than unstretched by more than kFoldedStrain.
+  for (int j = 0; j < im.nodes(); ++j)
+    if (!im.mat(j).compression && im.Y[N * j + EPS] < -kFoldedStrain) return true;
   return false;
 }
 

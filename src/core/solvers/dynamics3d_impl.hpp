@@ -98,8 +98,9 @@ struct DynamicSolver3D::Impl {
   /// The last step was a fallback step (dynamics3d_fallback.cpp): a base step that fails now
   /// falls back at once, without the cuts of section 4.3.
   bool in_fallback = false;
-  /// Fallback steps in a row taken without trying the implicit step first (stayInFallback).
-  int fallback_skipped = 0;
+  /// Time [s] of the fallback steps in a row taken without trying the implicit step first
+  /// (stayInFallback).
+  double fallback_skipped_time = 0.0;
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
@@ -167,7 +168,8 @@ std::string fallbackUnavailable(const DynamicSolver3D::Impl& im);
 bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep);
 /// After a fallback step: whether the next base step goes to the fallback at once, without an
 /// implicit try (the line is still folded: some node shorter than its unstretched length by
-/// more than kFoldedStrain, and for less than kMaxSkippedTime in a row).
+/// more than kFoldedStrain in a material without compression, and for less than kMaxSkippedTime
+/// in a row).
 bool stayInFallback(const DynamicSolver3D::Impl& im);
 
 // The winch (dynamics3d_winch.cpp).
