@@ -117,11 +117,14 @@ const Body* endBody(const DynamicSolver3D::Impl& im) {
 
 }  // namespace
 
-std::string fallbackUnavailable(const DynamicSolver3D::Impl& im) {
+std::string fallbackUnavailable(const DynamicSolver3D::Impl& im, double t_new) {
   const Ends e = endsOf(im);
   if (!(e.top_held || e.top_free)) return "no fallback step for a line whose top is a " + e.top;
   if (!(e.low_held || e.low_free)) return "no fallback step for a line whose lower end is a " + e.low;
-  if (im.winch.rate != 0.0) return "no fallback step while the winch runs";
+  // The winch's rate is set only inside an implicit step: ask its program whether the length
+  // moves over this one (a step past a limit is refused by the implicit step, and stays refused).
+  const WinchState& w = im.winch;
+  if (w.active() && w.program.lengthAt(t_new) != w.length) return "no fallback step while the winch runs";
   return "";
 }
 
@@ -425,7 +428,7 @@ void toBoxState(const DynamicSolver3D::Impl& im, const Lumped& L, const Eigen::V
 }  // namespace
 
 bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
-  const std::string why = fallbackUnavailable(im);
+  const std::string why = fallbackUnavailable(im, im.t + dt);
   if (!why.empty()) {
     rep.message += "; " + why;
     return false;

@@ -161,8 +161,8 @@ struct DynamicSolver3D::Impl {
 void rowsChanged(DynamicSolver3D::Impl& im);
 
 // The fallback step (dynamics3d_fallback.cpp; docs/method.md "Slack and snap: the fallback step").
-/// Why the line cannot fall back now ("" when it can).
-std::string fallbackUnavailable(const DynamicSolver3D::Impl& im);
+/// Why the line cannot fall back over a step ending at t_new ("" when it can).
+std::string fallbackUnavailable(const DynamicSolver3D::Impl& im, double t_new);
 /// Take a step of dt from the accepted state with the explicit lumped-mass model of the line;
 /// false (the reason appended to rep.message) when it cannot.
 bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep);
