@@ -218,6 +218,7 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
     << "  \"jacobians\": " << r.jacobians << ",\n"
     << "  \"fallback_steps\": " << r.fallback_steps << ",\n"
     << "  \"fallback_substeps\": " << r.fallback_substeps << ",\n"
+    << "  \"top_off_path\": " << r.top_off_path << ",\n"
     << "  \"threads\": " << d.threads << ",\n"
     << "  \"wall_seconds\": " << jsonNum(r.wall_seconds) << ",\n"
     << "  \"real_time_factor\": " << jsonNum(g.rtf) << ",\n"
@@ -257,6 +258,7 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
   if (r.jacobians > 0 && r.jacobians != r.newton_iterations) o << " (" << r.jacobians << " Jacobians)";
   if (r.fallback_steps > 0)
     o << ", " << r.fallback_steps << " fallback steps (" << r.fallback_substeps << " explicit sub-steps)";
+  if (r.top_off_path > 0) o << ", " << r.top_off_path << " converged steps refused with the top off its path";
   o << "\n";
   o << "  wall time      " << fmtNum("%.3g", r.wall_seconds) << " s, real-time factor "
     << (std::isfinite(g.rtf) ? fmtNum("%.3g", g.rtf) : std::string("inf"))

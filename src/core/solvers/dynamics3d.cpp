@@ -557,6 +557,12 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
     rep.message = os.str();
     return false;
   }
+  if (const std::string off = topOffItsPath(im, Yv, t_new); !off.empty()) {
+    ++im.totals.top_off_path;
+    im.newton_matrix.setZero();
+    rep.message = "t = " + fmtNum(t_new) + " s (dt = " + fmtNum(dt) + " s): " + off;
+    return false;
+  }
   const double g = im.ga.gamma;
   im.Yd_prev = im.Yd;
   im.last_dt = dt;

@@ -161,6 +161,10 @@ struct DynamicSolver3D::Impl {
 void rowsChanged(DynamicSolver3D::Impl& im);
 
 // The fallback step (dynamics3d_fallback.cpp; docs/method.md "Slack and snap: the fallback step").
+/// Why a converged implicit step ending at t_new with unknowns Yv is not the line's motion ("" when
+/// it is): the top node off the path of a top held there by position feedback, when the fallback
+/// can take the step instead.
+std::string topOffItsPath(const DynamicSolver3D::Impl& im, const Eigen::VectorXd& Yv, double t_new);
 /// Why the line cannot fall back over a step ending at t_new ("" when it can).
 std::string fallbackUnavailable(const DynamicSolver3D::Impl& im, double t_new);
 /// Take a step of dt from the accepted state with the explicit lumped-mass model of the line;

@@ -72,6 +72,9 @@ class DynamicSolver2D {
     long fallback_steps = 0;     ///< steps taken by the fallback (3-D solver; included in steps)
     long fallback_substeps = 0;  ///< the fallback's explicit sub-steps
     long fallback_retries = 0;   ///< implicit base steps tried and failed right after a fallback step
+    /// Converged implicit steps refused because the top node had left the top's path (a folded
+    /// top interval; docs/method.md "Slack and snap"); a cut step or the fallback took them.
+    long top_off_path = 0;
   };
   Totals totals() const;
 
@@ -108,6 +111,7 @@ struct DynamicSeries {
   /// Base-step remainders taken by the fallback step (3-D; docs/method.md "Slack and snap") and
   /// the explicit sub-steps they took.
   long fallback_steps = 0, fallback_substeps = 0;
+  long top_off_path = 0;  ///< converged implicit steps refused: the top node off its path (3-D)
   double wall_seconds = 0.0;
 };
 
