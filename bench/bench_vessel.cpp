@@ -116,6 +116,7 @@ void BM_SpreadMooringStorm(benchmark::State& state) {
   lo.restart_failed_lines = false;
   double simulated = 0.0, wall = 0.0;
   long fallback = 0;
+  md::DynamicSolver3D::Totals sum;
   for (auto _ : state) {
     md::VesselLockstep run(s, s.dynamics, lo);
     const auto a = std::chrono::steady_clock::now();
@@ -131,10 +132,28 @@ void BM_SpreadMooringStorm(benchmark::State& state) {
     simulated += samples.back().t - samples.front().t;
     wall += dt;
     fallback = 0;
-    for (std::size_t i = 0; i < s.lines.size(); ++i) fallback += run.dynamics().lineFallbackSteps(i);
+    sum = {};
+    for (std::size_t i = 0; i < s.lines.size(); ++i) {
+      fallback += run.dynamics().lineFallbackSteps(i);
+      const auto t = run.dynamics().lineTotals(i);
+      sum.steps += t.steps;
+      sum.cuts += t.cuts;
+      sum.newton_iterations += t.newton_iterations;
+      sum.jacobians += t.jacobians;
+      sum.fallback_substeps += t.fallback_substeps;
+      sum.top_off_path += t.top_off_path;
+    }
   }
+  const double steps = std::max(1.0, static_cast<double>(sum.steps));
   state.counters["real_time_factor"] = simulated / wall;
   state.counters["fallback_steps"] = static_cast<double>(fallback);
+  // Where the cost goes (all lines): per line step, Newton iterations and Jacobians assembled and
+  // factored; cuts and the fallback's explicit sub-steps in all.
+  state.counters["iterations_per_step"] = static_cast<double>(sum.newton_iterations) / steps;
+  state.counters["jacobians_per_step"] = static_cast<double>(sum.jacobians) / steps;
+  state.counters["cuts"] = static_cast<double>(sum.cuts);
+  state.counters["fallback_substeps"] = static_cast<double>(sum.fallback_substeps);
+  state.counters["top_off_path"] = static_cast<double>(sum.top_off_path);
 }
 
 }  // namespace

@@ -152,7 +152,7 @@ TEST(Dynamics3DFallback, SmallVesselRidesOutAShortHs4StormWithChainThatDoesNotPu
 
 TEST(Dynamics3DFallback, SpreadMooringRidesOutAShortHs6StormWithoutSpuriousSnapLoads) {
   // config/spread_mooring.yaml (8 lines of 200 chain intervals, `type: chain`: no compression,
-  // fallback after one cut) in a JONSWAP Hs 6 m, Tp 10 s sea from 30 deg, 4 m mean offset
+  // a failed step straight to the fallback) in a JONSWAP Hs 6 m, Tp 10 s sea from 30 deg, 4 m mean offset
   // down-wave, 3 m slow drift: the bow fairleads move down at up to 6 m/s, faster than the chain
   // sinks, and the tops go wholly slack and snap (the storm of the issue, 40 s of it).
   SystemProblem s = loadSystemFromFile("config/spread_mooring.yaml");

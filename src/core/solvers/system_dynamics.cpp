@@ -351,6 +351,7 @@ long SystemDynamics::lineFallbackSteps(std::size_t i) const {
   const long before = i < impl_->fallback_before.size() ? impl_->fallback_before[i] : 0;
   return before + impl_->lines.at(i)->totals().fallback_steps;
 }
+DynamicSolver3D::Totals SystemDynamics::lineTotals(std::size_t i) const { return impl_->lines.at(i)->totals(); }
 StaticResult SystemDynamics::line(std::size_t i) const { return impl_->lines.at(i)->snapshot(); }
 
 std::array<double, 3> SystemDynamics::pointVelocity(std::size_t p) const {

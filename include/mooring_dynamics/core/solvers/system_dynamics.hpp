@@ -42,6 +42,7 @@
 #include "mooring_dynamics/core/model/dynamics_options.hpp"
 #include "mooring_dynamics/core/model/result.hpp"
 #include "mooring_dynamics/core/model/rigid_pose.hpp"
+#include "mooring_dynamics/core/solvers/dynamics3d.hpp"
 #include "mooring_dynamics/core/solvers/system_statics.hpp"
 #include "mooring_dynamics/core/solvers/vessel_statics.hpp"
 
@@ -130,6 +131,9 @@ class SystemDynamics {
   /// Steps of line i taken by its solver's fallback so far (docs/method.md "Slack and snap: the
   /// fallback step"), over its restarts too.
   long lineFallbackSteps(std::size_t i) const;
+  /// Cost counters of line i's solver since it last started (a restart begins them again):
+  /// steps, cuts, Newton iterations, Jacobians, fallback steps and sub-steps.
+  DynamicSolver3D::Totals lineTotals(std::size_t i) const;
 
   struct Impl;
 
