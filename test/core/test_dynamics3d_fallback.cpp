@@ -58,6 +58,36 @@ TEST(Dynamics3DFallback, HeavedSlackLineWithoutCompressionRunsThroughEverySnap) 
   EXPECT_GT(largest(r.top_tension), r.initial_static.nodes.back().tension) << "it snaps above its static tension";
 }
 
+TEST(Dynamics3DFallback, DefaultSettingsSnapTheLightRopeUnderTheSpringMassBound) {
+  // The same case with dynamics.fallback_after_cuts not given (automatic: 1 here, the line has
+  // materials without compression). A hand bound on the snap of the rope: the mass M below it
+  // (clump and its added mass, and at most the whole chain with its added mass) meeting the rope
+  // (a spring k = EA / L, its own mass negligible) at relative speed v can stretch it by no more
+  // than v sqrt(M / k), so the top tension stays below the static one plus v sqrt(k M). v is at
+  // most the top's largest speed 2 pi a / T plus the clump's terminal sinking speed in still
+  // water (weight against drag; the chain only slows it). Deeper cuts before the fallback (4)
+  // snapped this top to 18.5 kN, above the bound; 0 or 1 give 7.4 kN.
+  Problem p = heavedSlackNoCompression(12.0);
+  p.dynamics.fallback_after_cuts = DynamicOptions::kFallbackAfterCutsAuto;
+  const DynamicSeries r = runDynamic3D(p);
+  ASSERT_TRUE(r.completed) << r.message;
+  const Material& chain = p.materials.at(0);
+  const Material& rope = p.materials.at(1);
+  const Body& clump = p.bodies.at(0);
+  constexpr double kRopeLength = 20.0, kChainLength = 30.0;  // config/heaved_slack.yaml
+  const double k = rope.EA / kRopeLength;
+  const double M = clump.mass + clump.added_mass + kChainLength * (chain.mass + chain.added_mass);
+  const TopMotion& tm = p.dynamics.top_motion;
+  const double area = 0.25 * M_PI * clump.diameter * clump.diameter;
+  const double sinking = std::sqrt(clump.wet_weight / (0.5 * p.environment.water_density * clump.cd * area));
+  const double v = 2.0 * M_PI * tm.amplitude_z / tm.period + sinking;
+  const double bound = r.initial_static.nodes.back().tension + v * std::sqrt(k * M);
+  std::printf("heaved slack line, default fallback settings: top tension max %.0f N, spring-mass bound %.0f N "
+              "(v %.2f m/s, M %.0f kg)\n", largest(r.top_tension), bound, v, M);
+  EXPECT_LT(largest(r.top_tension), bound);
+  EXPECT_EQ(smallest(r.top_tension), 0.0) << "the top still goes slack in every cycle";
+}
+
 TEST(Dynamics3DFallback, WithoutTheFallbackTheSameRunStops) {
   Problem p = heavedSlackNoCompression(12.0);
   p.dynamics.fallback = false;

@@ -101,8 +101,8 @@ std::string DynamicOptions::validate() const {
   if (gnss.enabled && !(e = gnss.validate()).empty()) return e;
   if (max_cut_levels < 0 || max_cut_levels > 8)
     return k + "max_cut_levels = " + std::to_string(max_cut_levels) + ": must be in [0, 8]";
-  if (fallback_after_cuts < 0 || fallback_after_cuts > 8)
-    return k + "fallback_after_cuts = " + std::to_string(fallback_after_cuts) + ": must be in [0, 8]";
+  if (fallback_after_cuts != kFallbackAfterCutsAuto && (fallback_after_cuts < 0 || fallback_after_cuts > 8))
+    return k + "fallback_after_cuts = " + std::to_string(fallback_after_cuts) + ": must be in [0, 8] (or not given: automatic)";
   if (!(std::isfinite(tolerance) && tolerance > 0.0)) return fieldError(k + "tolerance", tolerance, "must be > 0");
   if (max_iterations < 1) return k + "max_iterations = " + std::to_string(max_iterations) + ": must be >= 1";
   if (!(std::isfinite(relaxation) && relaxation > 0.0 && relaxation <= 1.0))

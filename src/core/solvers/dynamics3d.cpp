@@ -308,6 +308,12 @@ DynamicSolver3D::DynamicSolver3D(const Problem& problem) : impl_(std::make_uniqu
   im.opt = problem.dynamics;
   im.ga = problem.dynamics.scheme;
   im.mesh = buildMesh(problem);
+  if (im.opt.fallback_after_cuts == DynamicOptions::kFallbackAfterCutsAuto) {
+    // (DynamicOptions::fallback_after_cuts) 1 where the line can go slack and snap.
+    bool slack_law = false;
+    for (int j = 0; j < im.nodes(); ++j) slack_law = slack_law || !im.mat(j).compression;
+    im.opt.fallback_after_cuts = slack_law ? 1 : 4;
+  }
   // A towed line starts from its steady tow, a drifter from its steady drift: the statics find
   // the drift velocity V_d, and every node moves at it.
   const bool drifter = isDrifter(problem);

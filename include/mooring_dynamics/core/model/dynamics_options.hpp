@@ -128,11 +128,15 @@ struct DynamicOptions {
   /// method alone does. The 2-D solver has none.
   bool fallback = true;
   /// Cuts a base step gets before what is left of it goes to the fallback step, in [0, 8]
-  /// (capped at max_cut_levels). 4 (= max_cut_levels): only steps the implicit scheme cannot
-  /// take at all, so a run that goes through without the fallback is unchanged bit for bit.
-  /// 1: a storm's slack-and-snap steps go to the fallback after one cut, without the failed
-  /// Newton iterations of the deeper cuts (docs/performance.md, "Storms").
-  int fallback_after_cuts = 4;
+  /// (capped at max_cut_levels), or kFallbackAfterCutsAuto (the default, when the file does not
+  /// say): 1 for a line with a material that carries no compression (chain, rope, wire: the
+  /// lines that go slack and snap), 4 (= max_cut_levels) for others. 4: only steps the implicit
+  /// scheme cannot take at all, so a run that goes through without the fallback is unchanged bit
+  /// for bit. 0-1: slack-and-snap steps go to the fallback at once or after one cut; the deeper
+  /// cuts cost many failed Newton iterations, and the tiny steps they end in give snap loads
+  /// several times too large (docs/problem_format.md).
+  static constexpr int kFallbackAfterCutsAuto = -1;
+  int fallback_after_cuts = kFallbackAfterCutsAuto;
 
   /// Threads of the 2-D and 3-D dynamic solvers, 1 or 2: with 2 a second thread assembles and
   /// eliminates the upper half of the line in every Newton iteration (the Newton matrix's
