@@ -78,6 +78,9 @@ TEST(Limits, LimitsThemselvesAreValidated) {
   l = ResourceLimits{};
   l.max_memory_mb = 1e300;
   EXPECT_TRUE(has(l.validate(), "limits.max_memory_mb"));
+  l = ResourceLimits{};
+  l.max_input_mb = 300;  // over what readFileText reads at all (256 MB)
+  EXPECT_TRUE(has(l.validate(), "limits.max_input_mb = 300"));
 }
 
 TEST(Limits, EachLimitRefusesWithItsKey) {

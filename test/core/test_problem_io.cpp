@@ -640,3 +640,93 @@ TEST(ProblemIo, CommaStartingALineIsASyntaxErrorNotAHang) {
   EXPECT_EQ(errorOf(minimalWith("# a comment \"with a quote\n# , and a comma\nname: \"x\n  , y\"\n")), "");
   EXPECT_EQ(errorOf(minimalWith("dynamics: {duration: 5\n  , dt: 0.1}\n")), "");
 }
+
+namespace {
+/// Writes `text` to `name` in the test's temporary directory and returns the path.
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  return path;
+}
+}  // namespace
+
+TEST(ProblemIo, CurrentProfileFromACsvFileIsTheInlineProfile) {
+  // The same three points inline and in a CSV file (header, a comment, a relative path): the
+  // same table, point for point.
+  const std::string inline_text = minimalWith(R"(environment:
+  depth: 100
+  current:
+    - {depth: 0, speed: 0.7, direction_deg: 10}
+    - {depth: 50.5, speed: 0.4, direction_deg: 20}
+    - {depth: 100, speed: 0.1, direction_deg: -30}
+)");
+  writeTemp("md_current.csv", "depth,speed,direction_deg\n# from the ADCP\n0,0.7,10\n50.5,0.4,20\n100,0.1,-30\n");
+  const std::string file =
+      writeTemp("md_current_file.yaml", minimalWith("environment:\n  depth: 100\n  current: {file: md_current.csv}\n"));
+  const Problem a = loadProblemFromString(inline_text);
+  const Problem b = loadProblemFromFile(file);
+  ASSERT_EQ(b.environment.current.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(b.environment.current[i].depth, a.environment.current[i].depth) << i;
+    EXPECT_EQ(b.environment.current[i].speed, a.environment.current[i].speed) << i;
+    EXPECT_EQ(b.environment.current[i].direction, a.environment.current[i].direction) << i;
+  }
+}
+
+TEST(ProblemIo, CurrentFileErrorsNameTheKeyTheFileTheRowAndTheConstraint) {
+  auto errorWith = [](const std::string& csv) {
+    writeTemp("md_bad_current.csv", csv);
+    const std::string path =
+        writeTemp("md_bad_current.yaml", minimalWith("environment:\n  current: {file: md_bad_current.csv}\n"));
+    try {
+      loadProblemFromFile(path);
+    } catch (const ProblemError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string m = errorWith("depth,speed,direction_deg\n0,0.5,0\n10,0.4,0\n10,0.3,0\n");
+  EXPECT_NE(m.find("environment.current.file = \"md_bad_current.csv\""), std::string::npos) << m;
+  EXPECT_NE(m.find("md_bad_current.csv:4: depth = 10: must increase along the profile (previous depth = 10)"),
+            std::string::npos) << m;
+  m = errorWith("0,0.5,0\n10,-0.4,0\n");
+  EXPECT_NE(m.find("md_bad_current.csv:2: speed = -0.4: must be >= 0"), std::string::npos) << m;
+  m = errorWith("0,0.5\n");
+  EXPECT_NE(m.find("md_bad_current.csv:1"), std::string::npos) << m;
+  m = errorWith("0,0.5,0\n");
+  EXPECT_NE(m.find("at least 2 rows"), std::string::npos) << m;
+  // A missing file names it; {file} does not mix with the other forms' keys.
+  std::remove((::testing::TempDir() + "md_bad_current.csv").c_str());
+  const std::string missing =
+      writeTemp("md_bad_current.yaml", minimalWith("environment:\n  current: {file: md_bad_current.csv}\n"));
+  try {
+    loadProblemFromFile(missing);
+    ADD_FAILURE() << "a missing current file loaded";
+  } catch (const ProblemError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot read file"), std::string::npos) << e.what();
+  }
+  EXPECT_ERROR_HAS(minimalWith("environment:\n  current: {file: x.csv, speed: 1}\n"), "speed");
+}
+
+TEST(ProblemIo, TextOverMaxInputMbIsRefusedBeforeTheYamlReaderSeesIt) {
+  // 5 MB of comment lines in front of a valid problem: over the default 4 MB. A syntax error
+  // after the padding shows that the refusal comes first (the reader would report the error).
+  std::string pad;
+  for (int i = 0; i < 70000; ++i) pad += "# padding, a long current profile would be here ........................\n";
+  ASSERT_GT(pad.size(), ResourceLimits::kDefaultMaxInputMb * 1024 * 1024);
+  std::string m = errorOf(pad + kMinimal + "name: \"unterminated\n");
+  EXPECT_NE(m.find("over limits.max_input_mb = 4 MB"), std::string::npos) << m;
+  EXPECT_NE(m.find("environment.current: {file: ...}"), std::string::npos) << m;
+  // The file's own limits section raises it (read alone, before the rest), block or flow style.
+  EXPECT_EQ(errorOf(pad + kMinimal + "limits:\n  max_input_mb: 8   # a long profile\n"), "");
+  EXPECT_EQ(errorOf(pad + "limits: {max_input_mb: 8}\n" + kMinimal), "");
+  // Raised too little, or to a value out of range: refused, naming the key.
+  m = errorOf(pad + kMinimal + "limits: {max_input_mb: 4.5}\n");
+  EXPECT_NE(m.find("over limits.max_input_mb = 4.5 MB"), std::string::npos) << m;
+  m = errorOf(pad + kMinimal + "limits: {max_input_mb: 1000}\n");
+  EXPECT_NE(m.find("limits.max_input_mb = 1000: must be a number in [0.01, 256]"), std::string::npos) << m;
+  // Lowered: a small file over it is refused too.
+  m = errorOf(minimalWith("limits: {max_input_mb: 0.01}\n#" + std::string(20000, '.') + "\n"));
+  EXPECT_NE(m.find("over limits.max_input_mb = 0.01 MB"), std::string::npos) << m;
+}

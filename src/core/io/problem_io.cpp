@@ -20,6 +20,7 @@
 #include <system_error>
 #include <vector>
 
+#include "mooring_dynamics/core/io/csv_table.hpp"
 #include "mooring_dynamics/core/io/problem_io_dynamics.hpp"
 #include "mooring_dynamics/core/io/seabed_grid_io.hpp"
 #include "mooring_dynamics/core/io/yaml_reader.hpp"
@@ -84,11 +85,43 @@ void readSeabed(const Item& it, Seabed& seabed, const std::string& base_dir) {
   }
 }
 
-/// environment.current: a uniform {speed, direction_deg} down to the deepest seabed, or a profile
-/// of {depth, speed, direction_deg}.
-void readCurrent(const Item& cit, Environment& env) {
+/// environment.current.file: a profile in CSV, one point a row: depth [m], speed [m/s],
+/// direction_deg [deg] (a header row and '#' comments skipped), depth >= 0 and increasing.
+/// Read without the YAML reader, for profiles of many points (ResourceLimits::max_input_mb).
+std::vector<CurrentPoint> readCurrentFile(const Item& fi, const std::string& base_dir) {
+  const std::string rel = readString(fi);
+  if (rel.empty()) fi.failQuoted("must name a CSV file of depth, speed, direction_deg");
+  const std::string path = relativeTo(rel, base_dir);
+  std::vector<CurrentPoint> out;
+  try {
+    const std::vector<CsvRow> rows = parseCsvTable(readFileText(path), path, {"depth", "speed", "direction_deg"});
+    if (rows.size() < 2) throw ProblemError(path + ": a current profile needs at least 2 rows (depth, speed, direction_deg)");
+    out.reserve(rows.size());
+    for (const CsvRow& r : rows) {
+      CurrentPoint p;
+      p.depth = r.values[0];
+      p.speed = r.values[1];
+      p.direction = r.values[2] * kDegToRad;
+      if (!(p.depth >= 0.0)) throw ProblemError(r.where + ": depth = " + formatNumber(p.depth) + ": must be >= 0");
+      if (!(p.speed >= 0.0)) throw ProblemError(r.where + ": speed = " + formatNumber(p.speed) + ": must be >= 0");
+      if (!out.empty() && !(p.depth > out.back().depth))
+        throw ProblemError(r.where + ": depth = " + formatNumber(p.depth) +
+                           ": must increase along the profile (previous depth = " + formatNumber(out.back().depth) + ")");
+      out.push_back(p);
+    }
+  } catch (const ProblemError& e) {
+    throw ProblemError(fi.path + " = " + quoted(rel) + ": " + e.what() + lineSuffix(fi.mark));
+  }
+  return out;
+}
+
+/// environment.current: a uniform {speed, direction_deg} down to the deepest seabed, a profile
+/// of {depth, speed, direction_deg}, or {file: CSV} (readCurrentFile).
+void readCurrent(const Item& cit, Environment& env, const std::string& base_dir) {
   env.current.clear();
-  if (cit.node.IsMap()) {
+  if (cit.node.IsMap() && cit.node["file"]) {
+    env.current = readCurrentFile(Map(cit, {"file"}).at("file"), base_dir);
+  } else if (cit.node.IsMap()) {
     // Uniform current shorthand: {speed, direction_deg} -> same value from the surface to the bottom.
     const Map c(cit, {"speed", "direction_deg"});
     CurrentPoint p;
@@ -136,7 +169,7 @@ void readEnvironment(const Item& it, Environment& env, const std::string& base_d
     env.wind_speed = w.number("speed", 0.0, Range::NonNegative);
     env.wind_direction = w.number("direction_deg", 0.0, Range::Any) * kDegToRad;
   }
-  if (m.has("current")) readCurrent(m.at("current"), env);
+  if (m.has("current")) readCurrent(m.at("current"), env, base_dir);
   if (m.has("waves")) env.waves = readWaves(m.at("waves"));
 }
 
@@ -452,10 +485,11 @@ void readCatalogue(const Map& top, std::vector<Material>& materials, std::vector
 }
 
 void readLimits(const Item& it, ResourceLimits& lim) {
-  const Map m(it, {"max_nodes", "max_steps", "max_memory_mb"});
+  const Map m(it, {"max_nodes", "max_steps", "max_memory_mb", "max_input_mb"});
   lim.max_nodes = m.number("max_nodes", lim.max_nodes, Range::Positive);
   lim.max_steps = m.number("max_steps", lim.max_steps, Range::Positive);
   lim.max_memory_mb = m.number("max_memory_mb", lim.max_memory_mb, Range::Positive);
+  lim.max_input_mb = m.number("max_input_mb", lim.max_input_mb, Range::Positive);
   const std::string e = lim.validate();
   if (!e.empty()) throw ProblemError(e + lineSuffix(it.mark));
 }
@@ -604,8 +638,59 @@ class DocumentCounter : public YAML::EventHandler {
   }
 };
 
+/// The lines of `text` from a top-level `key:` to the next top-level key, behind as many empty
+/// lines as precede it (so that the YAML reader's line numbers are the file's); "" without one.
+std::string topLevelBlock(const std::string& text, const std::string& key) {
+  std::istringstream in(text);
+  std::string line, block;
+  int before = 0;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (!inside) {
+      if (line.compare(0, key.size() + 1, key + ":") == 0) {
+        inside = true;
+        block.assign(static_cast<std::size_t>(before), '\n');
+        block += line + "\n";
+      } else {
+        ++before;
+      }
+      continue;
+    }
+    if (!line.empty() && line[0] != ' ' && line[0] != '\t' && line[0] != '#' && line[0] != '\r') break;
+    block += line + "\n";
+  }
+  return block;
+}
+
+/// limits.max_input_mb, checked on the text before the YAML reader parses it all (its cost is
+/// the text's size); the file's own `limits` section, read alone first, may raise or lower it.
+void checkInputSize(const std::string& text) {
+  constexpr double kBytesPerMb = 1024.0 * 1024.0;
+  const double mb = static_cast<double>(text.size()) / kBytesPerMb;
+  ResourceLimits lim;
+  const std::string block = topLevelBlock(text, "limits");
+  if (!block.empty()) {
+    YAML::Node n;
+    try {
+      n = YAML::Load(block);
+    } catch (const YAML::Exception&) {
+      n = YAML::Node();  // (not a readable block by itself: the default stands)
+    }
+    if (n.IsMap() && n["limits"] && n["limits"].IsMap())
+      readLimits(Item{n["limits"], "limits", markOf(n["limits"], YAML::Mark::null_mark())}, lim);
+  }
+  if (mb <= lim.max_input_mb) return;
+  std::ostringstream os;
+  os.precision(3);
+  os << "the text is " << mb << " MB, over limits.max_input_mb = " << lim.max_input_mb
+     << " MB (the YAML reader takes about a second per MB). Put a long current profile in a CSV file "
+        "(environment.current: {file: ...}), or raise limits.max_input_mb in the file's limits section";
+  throw ProblemError(os.str());
+}
+
 YAML::Node parseYaml(const std::string& yaml_text) {
   YAML::Node root;
+  checkInputSize(yaml_text);
   rejectStrayFlowEntry(yaml_text);
   try {
     if (DocumentCounter::count(yaml_text) > 1)

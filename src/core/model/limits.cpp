@@ -34,6 +34,9 @@ std::string ResourceLimits::validate() const {
     return limitKey("max_steps", max_steps, 1.0, kCeilSteps);
   if (!(std::isfinite(max_memory_mb) && max_memory_mb >= 1.0 && max_memory_mb <= kCeilMemoryMb))
     return limitKey("max_memory_mb", max_memory_mb, 1.0, kCeilMemoryMb);
+  constexpr double kFloorInputMb = 0.01, kCeilInputMb = 256.0;  // (readFileText reads at most 256 MB)
+  if (!(std::isfinite(max_input_mb) && max_input_mb >= kFloorInputMb && max_input_mb <= kCeilInputMb))
+    return limitKey("max_input_mb", max_input_mb, kFloorInputMb, kCeilInputMb);
   return {};
 }
 

@@ -24,9 +24,16 @@ struct ResourceLimits {
   /// Estimated memory of the run [MB]: half the CI machine's 8 GB.
   static constexpr double kDefaultMaxMemoryMb = 4096.0;
 
+  /// Size of a problem or system file's text [MB = 2^20 bytes], checked before the YAML reader
+  /// sees it: yaml-cpp reads about 1 MB a second (a current profile of 1.4 million inline points,
+  /// 84 MB, took 153 s and 5 GB before the solver said anything). 4 MB is a thousand times a
+  /// shipped example; long tables go in CSV files (environment.current.file, motion tables).
+  static constexpr double kDefaultMaxInputMb = 4.0;
+
   double max_nodes = kDefaultMaxNodes;
   double max_steps = kDefaultMaxSteps;
   double max_memory_mb = kDefaultMaxMemoryMb;
+  double max_input_mb = kDefaultMaxInputMb;
 
   /// Empty when valid, else "limits.<key> = value: constraint".
   std::string validate() const;
