@@ -1,6 +1,7 @@
 // Linear waves: dispersion relation, spectra, realized seas and their kinematics.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -450,4 +451,56 @@ TEST(Waves, ValidateMessagesNameKeyAndValue) {
     EXPECT_NE(std::string(e.what()).find("environment.waves.hs = -1: must be > 0"), std::string::npos);
   }
   EXPECT_THROW(WaveField(regular(1.0, 8.0), -5.0, kG), std::invalid_argument);
+}
+
+// frequencies: random puts each component at a random place in its own bin (the record no longer
+// repeats after 1/df) and leaves the phases and Hs as they are; spreading_s draws one direction
+// per component from cos^(2s)(t/2), whose mean resultant length E[cos t] is s / (s + 1).
+TEST(Waves, RandomFrequenciesStayInTheirBinsAndKeepThePhases) {
+  WaveSpec spec;
+  spec.type = WaveSpec::Type::Jonswap;
+  spec.hs = 4.0;
+  spec.tp = 9.0;
+  spec.seed = 11;
+  const WaveField centred(spec, 200.0, kG);
+  spec.random_frequencies = true;
+  const WaveField random(spec, 200.0, kG);
+  const double fp = 1.0 / spec.tp, df = (spec.f_max_factor - spec.f_min_factor) * fp / spec.components;
+  double m0 = 0.0, off_centre = 0.0;
+  for (std::size_t i = 0; i < random.components().size(); ++i) {
+    const double f = random.components()[i].omega / (2.0 * kPi);
+    const double lo = spec.f_min_factor * fp + static_cast<double>(i) * df;
+    EXPECT_GE(f, lo);
+    EXPECT_LT(f, lo + df);
+    off_centre = std::max(off_centre, std::abs(f - (lo + 0.5 * df)) / df);
+    EXPECT_EQ(random.components()[i].phase, centred.components()[i].phase) << "the phases keep their stream";
+    m0 += 0.5 * random.components()[i].amplitude * random.components()[i].amplitude;
+  }
+  /// 200 uniform draws: the farthest from its bin's centre is beyond 0.4 df with probability 1 - 0.8^200.
+  constexpr double kSomeDrawFarFromCentre = 0.4;
+  EXPECT_GT(off_centre, kSomeDrawFarFromCentre);
+  EXPECT_NEAR(4.0 * std::sqrt(m0), spec.hs, 1e-12) << "Hs matched exactly, as with centred bins";
+}
+
+TEST(Waves, SpreadingDirectionsFollowCos2s) {
+  WaveSpec spec;
+  spec.type = WaveSpec::Type::PiersonMoskowitz;
+  spec.hs = 2.0;
+  spec.tp = 8.0;
+  spec.components = 10000;
+  spec.direction = 0.7;
+  for (double s : {1.0, 4.0, 15.0}) {
+    spec.spreading_s = s;
+    const WaveField sea(spec, 200.0, kG);
+    double sum_cos = 0.0, sum_sin = 0.0;
+    for (const WaveComponent& c : sea.components()) {
+      sum_cos += std::cos(c.direction - spec.direction);
+      sum_sin += std::sin(c.direction - spec.direction);
+    }
+    const double n = static_cast<double>(sea.components().size());
+    /// Sampling error of a mean of 10000 draws of cos t (std < 1): 5 standard errors.
+    constexpr double kMeanOf10000Tol = 5.0 / 100.0;
+    EXPECT_NEAR(sum_cos / n, s / (s + 1.0), kMeanOf10000Tol) << "s = " << s;
+    EXPECT_NEAR(sum_sin / n, 0.0, kMeanOf10000Tol) << "symmetric about the mean direction, s = " << s;
+  }
 }

@@ -19,7 +19,7 @@ using namespace yaml;
 
 WaveSpec readWaves(const Item& it) {
   const Map w(it, {"type", "height", "period", "hs", "tp", "gamma", "components", "f_min_factor",
-                   "f_max_factor", "seed", "direction_deg", "ramp"});
+                   "f_max_factor", "seed", "direction_deg", "ramp", "frequencies", "spreading_s"});
   const Item ti = w.required("type", "one of regular, jonswap, pierson_moskowitz");
   const std::string type = readString(ti);
   WaveSpec ws;
@@ -35,7 +35,7 @@ WaveSpec readWaves(const Item& it) {
   const bool regular = ws.type == WaveSpec::Type::Regular;
   for (const char* k : {"height", "period"})
     if (!regular && w.has(k)) w.at(k).fail("only used with type: regular");
-  for (const char* k : {"hs", "tp", "components", "f_min_factor", "f_max_factor", "seed"})
+  for (const char* k : {"hs", "tp", "components", "f_min_factor", "f_max_factor", "seed", "frequencies", "spreading_s"})
     if (regular && w.has(k)) w.at(k).fail("only used with type: jonswap or pierson_moskowitz");
   if (ws.type != WaveSpec::Type::Jonswap && w.has("gamma")) w.at("gamma").fail("only used with type: jonswap");
 
@@ -65,6 +65,17 @@ WaveSpec readWaves(const Item& it) {
       const Item fi = w.at("f_max_factor");
       ws.f_max_factor = readNumber(fi);
       if (!(ws.f_max_factor > 1.0)) fi.fail("must be > 1");
+    }
+    if (w.has("frequencies")) {
+      const Item fi = w.at("frequencies");
+      const std::string f = readString(fi);
+      if (f != "centred" && f != "random") fi.failQuoted("must be centred or random");
+      ws.random_frequencies = f == "random";
+    }
+    if (w.has("spreading_s")) {
+      const Item si = w.at("spreading_s");
+      ws.spreading_s = readNumber(si);
+      if (!(ws.spreading_s >= 0.0 && ws.spreading_s <= 1000.0)) si.fail("must be in [0, 1000] (0 = long-crested)");
     }
     if (w.has("seed")) {
       const Item si = w.at("seed");

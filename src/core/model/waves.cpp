@@ -144,6 +144,8 @@ std::string WaveSpec::validate() const {
       return keyOf("f_min_factor") + " = " + fmt(f_min_factor) + ": must be in (0, 1)";
     if (!(std::isfinite(f_max_factor) && f_max_factor > 1.0))
       return keyOf("f_max_factor") + " = " + fmt(f_max_factor) + ": must be finite and > 1";
+    if (!(spreading_s >= 0.0 && spreading_s <= 1000.0))
+      return keyOf("spreading_s") + " = " + fmt(spreading_s) + ": must be in [0, 1000] (0 = long-crested)";
   }
   if (!std::isfinite(direction))
     return keyOf("direction_deg") + " = " + fmt(direction * 180.0 / kPi) + ": must be finite";
@@ -204,6 +206,40 @@ double jonswapSpectrum(double f, double hs, double tp, double gamma) {
 // ---------------------------------------------------------------------------------------------
 // WaveField
 
+namespace {
+/// Inverse of the cumulative cos-2s spreading function D(t) ~ cos^(2s)(t / 2) on (-pi, pi),
+/// tabulated (trapezoids on 4096 intervals) and inverted by linear interpolation.
+class SpreadingSampler {
+ public:
+  explicit SpreadingSampler(double s) {
+    if (!(s > 0.0)) return;
+    constexpr int kIntervals = 4096;
+    theta_.resize(kIntervals + 1);
+    cdf_.resize(kIntervals + 1);
+    double prev = 0.0;
+    for (int i = 0; i <= kIntervals; ++i) {
+      theta_[i] = -kPi + kTwoPi * i / kIntervals;
+      const double d = std::pow(std::cos(0.5 * theta_[i]), 2.0 * s);
+      cdf_[i] = i == 0 ? 0.0 : cdf_[i - 1] + 0.5 * (prev + d) * (kTwoPi / kIntervals);
+      prev = d;
+    }
+    for (double& c : cdf_) c /= cdf_.back();
+  }
+  /// The angle [rad] from the mean direction whose cumulative probability is u in [0, 1).
+  double sample(double u) const {
+    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+    if (it == cdf_.begin()) return theta_.front();
+    if (it == cdf_.end()) return theta_.back();
+    const std::size_t j = static_cast<std::size_t>(it - cdf_.begin());
+    const double w = (u - cdf_[j - 1]) / (cdf_[j] - cdf_[j - 1]);
+    return theta_[j - 1] + w * (theta_[j] - theta_[j - 1]);
+  }
+
+ private:
+  std::vector<double> theta_, cdf_;
+};
+}  // namespace
+
 WaveField::WaveField(const WaveSpec& spec, double depth, double gravity) : depth_(depth), ramp_(spec.ramp) {
   const std::string e = spec.validate();
   if (!e.empty()) throw std::invalid_argument("WaveField: " + e);
@@ -237,10 +273,15 @@ WaveField::WaveField(const WaveSpec& spec, double depth, double gravity) : depth
   const int n = spec.components;
   const double df = (f1 - f0) / n;
   std::mt19937 rng(spec.seed);
+  // Frequency offsets in the bins and spreading directions come from a second stream, so that the
+  // phases (and the centred, long-crested sea) keep their bits.
+  std::mt19937 extra(spec.seed ^ 0x9E3779B9u);
+  const SpreadingSampler spread(spec.spreading_s);
   components_.reserve(static_cast<std::size_t>(n));
   double variance = 0.0;
   for (int i = 0; i < n; ++i) {
-    const double f = f0 + (i + 0.5) * df;
+    const double place = spec.random_frequencies ? static_cast<double>(extra()) / 4294967296.0 : 0.5;
+    const double f = f0 + (i + place) * df;
     const double s = spec.type == WaveSpec::Type::Jonswap ? jonswapSpectrum(f, spec.hs, spec.tp, spec.gamma)
                                                           : piersonMoskowitzSpectrum(f, spec.hs, spec.tp);
     WaveComponent c;
@@ -248,6 +289,7 @@ WaveField::WaveField(const WaveSpec& spec, double depth, double gravity) : depth
     c.omega = kTwoPi * f;
     c.k = waveNumber(c.omega, depth, gravity);
     c.direction = spec.direction;
+    if (spec.spreading_s > 0.0) c.direction += spread.sample(static_cast<double>(extra()) / 4294967296.0);
     c.phase = kTwoPi * (static_cast<double>(rng()) / 4294967296.0);
     variance += 0.5 * c.amplitude * c.amplitude;
     components_.push_back(c);
@@ -321,6 +363,8 @@ double WaveField::elevationRate(double x, double y, double t) const {
   elevationAndRate(x, y, t, eta, rate);
   return rate;
 }
+
+double WaveField::rampFactorRate(double t) const { return rampRate(ramp_, t); }
 
 void WaveField::elevationAndRate(double x, double y, double t, double& eta_out, double& rate_out) const {
   eta_out = rate_out = 0.0;

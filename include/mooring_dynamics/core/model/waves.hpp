@@ -35,6 +35,12 @@ struct WaveSpec {
   std::uint32_t seed = 1;   ///< random phases (std::mt19937)
   double direction = 0.0;   ///< direction of travel, counterclockwise from +x [rad]
   double ramp = 0.0;        ///< duration of a smooth start-up ramp on the amplitudes [s]
+  /// random: each component's frequency at a random place in its bin (not the centre), so that
+  /// the record does not repeat after 1 / df (3-hour storms with a few hundred components).
+  bool random_frequencies = false;
+  /// random: cos-2s directional spreading, D(t) ~ cos^(2s)((t - direction) / 2); 0 = long-crested.
+  /// Each component gets one direction drawn from D (single-direction-per-frequency method).
+  double spreading_s = 0.0;
 
   /// Empty when valid, else "environment.waves.<key> = value: constraint".
   std::string validate() const;
@@ -62,10 +68,13 @@ class WaveField {
   void velocity(double x, double y, double z, double t, double& vx, double& vy, double& vz) const;
   /// Water-particle acceleration [m/s^2].
   void acceleration(double x, double y, double z, double t, double& ax, double& ay, double& az) const;
+  /// The start-up ramp on every amplitude, r(t) = (1 - cos(pi t / ramp)) / 2 for 0 < t < ramp (0
+  /// before, 1 after and with no ramp), and its time derivative [1/s].
+  double rampFactor(double t) const;
+  double rampFactorRate(double t) const;
 
  private:
   friend class WaveVelocityCache;
-  double rampFactor(double t) const;
   /// Per-component constants of velocity(), computed once in the constructor (the velocity is
   /// evaluated at every node in every Newton iteration of the dynamic solver).
   struct Kinematics {
