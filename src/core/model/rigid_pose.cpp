@@ -14,6 +14,11 @@ RigidPose RigidPose::fromRollPitchYaw(const Eigen::Vector3d& position, double ro
   return p;
 }
 
+double RigidPose::yaw() const {
+  const Eigen::Matrix3d r = orientation.normalized().toRotationMatrix();
+  return std::atan2(r(1, 0), r(0, 0));
+}
+
 std::string RigidPose::validate(const std::string& what) const {
   std::ostringstream os;
   if (!position.allFinite()) {

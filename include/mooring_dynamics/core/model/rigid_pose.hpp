@@ -28,6 +28,9 @@ struct RigidPose {
 
   /// Roll, pitch, yaw [rad] (rotations about the body's x, y, z, applied as R = Rz(yaw) Ry(pitch) Rx(roll)).
   static RigidPose fromRollPitchYaw(const Eigen::Vector3d& position, double roll, double pitch, double yaw);
+  /// The yaw [rad] of that decomposition: the heading of the body x axis projected on the
+  /// horizontal, counterclockwise from world +x.
+  double yaw() const;
 
   /// Empty when usable, else a message naming `what` (e.g. "vessel.pose"), the value and the
   /// constraint: finite position, finite quaternion of unit norm within kUnitQuaternionTolerance.
