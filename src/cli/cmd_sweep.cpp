@@ -565,6 +565,40 @@ bool plotVariation(const core::SweepManifest& m, std::size_t v, const std::vecto
   return runGnuplot(d.root, "utilization_vs_" + var.name, gp.str(), err);
 }
 
+/// Per storm row: an accidental (ALS) storm, one of whose labels is in the manifest's als list.
+std::vector<bool> accidentalStorms(const core::SweepManifest& m, const std::vector<core::StormLineStats>& storms,
+                                   const std::map<std::string, const core::SweepCase*>& storm_case) {
+  std::vector<bool> als;
+  for (const auto& s : storms) {
+    bool a = false;
+    const auto it = storm_case.find(s.storm);
+    if (it != storm_case.end())
+      for (std::size_t v = 0; v < m.variations.size(); ++v)
+        for (const auto& label : m.als_labels) a = a || m.variations[v].labels[it->second->choice[v]] == label;
+    als.push_back(a);
+  }
+  return als;
+}
+
+/// "design check (...): N of M pass; largest design utilization ..." for the terminal.
+std::string designCheckText(const core::SweepManifest& m, const std::vector<core::StormLineStats>& storms) {
+  std::size_t checked = 0, passed = 0;
+  const core::StormLineStats* worst = nullptr;
+  for (const auto& s : storms) {
+    if (!s.checked) continue;
+    ++checked;
+    passed += s.design.pass ? 1 : 0;
+    if (worst == nullptr || s.design.utilization > worst->design.utilization) worst = &s;
+  }
+  std::string t = "  design check (DNV-OS-E301 form, consequence class " + std::to_string(m.design_class) + "): ";
+  if (worst == nullptr) return t + "no storm-line with a Gumbel fit and an MBL (2 seeds or more and materials.*.mbl)\n";
+  t += std::to_string(passed) + " of " + std::to_string(checked) + " storm-lines pass; largest design utilization " +
+       fmtNum("%.3f", worst->design.utilization) + " (" + core::toString(worst->limit_state) + ", line " + worst->line +
+       " in " + worst->storm + ": T_d " + fmtNum("%.1f", worst->design.design_tension / 1000.0) + " kN against S_c " +
+       fmtNum("%.1f", worst->design.strength / 1000.0) + " kN)\n";
+  return t;
+}
+
 int collect(const fs::path& root, std::ostream& out, std::ostream& err) {
   const SweepDirs d(root);
   core::SweepManifest m;
@@ -602,7 +636,8 @@ int collect(const fs::path& root, std::ostream& out, std::ostream& err) {
       ++pending;
     }
   }
-  const std::vector<core::StormLineStats> storms = core::stormLineStats(rows, m.gumbel);
+  std::vector<core::StormLineStats> storms = core::stormLineStats(rows, m.gumbel);
+  if (m.design_class > 0) core::designCheckStorms(storms, accidentalStorms(m, storms, storm_case), m.design_class);
   if (!writeFile(root / "summary.csv", [&](std::ostream& o) { core::writeCaseLineStatsCsv(o, rows); }, err) ||
       !writeFile(root / "storms.csv", [&](std::ostream& o) { core::writeStormLineStatsCsv(o, storms, m.gumbel); }, err) ||
       !writeFile(root / "status.csv", [&](std::ostream& o) {
@@ -629,6 +664,7 @@ int collect(const fs::path& root, std::ostream& out, std::ostream& err) {
                           : "maximum " + fmtNum("%.1f", worst->max_of_max / 1000.0))
         << " kN" << (util && worst->mbl > 0.0 ? ", utilization " + fmtNum("%.3f", plotValue(*worst, true)) : std::string())
         << "\n";
+  if (m.design_class > 0) out << designCheckText(m, storms);
   if (!storms.empty()) {
     if (!gnuplotAvailable()) {
       err << kProg << ": warning: gnuplot not found: no plots (install it with scripts/setup)\n";

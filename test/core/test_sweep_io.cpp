@@ -219,3 +219,64 @@ TEST(SweepIo, AFileTheSweepSetsIsRelativeToTheSweepFile) {
   EXPECT_EQ(fs::canonical(p.vessel.motion_table), fs::canonical(kConfig + "spread_mooring_motion.csv"));
   fs::remove_all(dir);
 }
+
+// A file named inside a section the sweep sets (vessel.raos: {file: ...}) is relative to the sweep
+// file too, and the case file finds it from its own folder.
+TEST(SweepIo, AFileInsideASectionTheSweepSetsIsRelativeToTheSweepFile) {
+  const fs::path dir = tempDir("pathsection");
+  const md::SweepSpec s = md::loadSweepFromString(
+      "base: " + kData + "small_vessel.yaml\n"
+      "set:\n"
+      "  dynamics.duration: 10\n"
+      "  vessel.sea_state: {type: jonswap, hs: 2, tp: 8, f_max_factor: 3}\n"
+      "  vessel.raos: {file: spread_vessel.4, ulen: 1, symmetry: port_starboard}\n",
+      kConfig);
+  const auto cases = md::expandSweep(s);
+  ASSERT_EQ(cases.size(), 1u);
+  const std::string text = md::caseProblemText(s, cases[0], dir.string());
+  const md::SystemProblem p = md::loadSystemFromString(text, dir.string());
+  EXPECT_EQ(fs::canonical(p.vessel.raos.file), fs::canonical(kConfig + "spread_vessel.4"));
+  EXPECT_TRUE(fs::path(YAML::Load(text)["vessel"]["raos"]["file"].as<std::string>()).is_relative())
+      << "written relative to the case folder";
+  fs::remove_all(dir);
+}
+
+// The shipped design-storm sweep: 3 headings x 3 seeds, and every case file loads (the RAO table
+// covers each case's sea: frequencies and headings relative to the hull).
+TEST(SweepIo, ShippedSpreadMooringSweepCasesLoad) {
+  const fs::path dir = tempDir("shipped_spread");
+  const md::SweepSpec s = md::loadSweepFromFile(kConfig + "spread_mooring_sweep.yaml");
+  const auto cases = md::expandSweep(s);
+  ASSERT_EQ(cases.size(), 9u);
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const md::SystemProblem p = md::loadSystemFromString(md::caseProblemText(s, c, dir.string()), dir.string());
+    EXPECT_TRUE(p.vessel.sea_state);
+    EXPECT_TRUE(p.vessel.motion_table.empty()) << "the sweep removes the base file's table";
+    EXPECT_EQ(p.dynamics.duration, 10800.0) << "3-hour storms";
+  }
+  fs::remove_all(dir);
+}
+
+// statistics.design_check: the consequence class and the ALS labels, checked against the
+// variations, and carried by the manifest to `sweep --collect`.
+TEST(SweepIo, DesignCheckSettingsAndTheManifest) {
+  std::string text = kSystemSweep;
+  text.replace(text.find("statistics: {gumbel_fit: mle, skip_time: 1.5}"), 46,
+               "statistics: {gumbel_fit: mle, skip_time: 1.5, design_check: {consequence_class: 2, als: [no-e]}}");
+  const md::SweepSpec s = md::loadSweepFromString(text, kData);
+  EXPECT_EQ(s.design_class, 2);
+  EXPECT_EQ(s.als_labels, std::vector<std::string>{"no-e"});
+  const fs::path dir = tempDir("manifest_design");
+  std::ofstream(dir / "manifest.yaml") << md::manifestText(md::manifestOf(s, md::expandSweep(s)));
+  const md::SweepManifest m = md::loadManifestFromFile((dir / "manifest.yaml").string());
+  EXPECT_EQ(m.design_class, 2);
+  EXPECT_EQ(m.als_labels, std::vector<std::string>{"no-e"});
+  fs::remove_all(dir);
+  std::string bad = text;
+  bad.replace(bad.find("als: [no-e]"), 11, "als: [no-q]");
+  EXPECT_NE(loadError(bad).find("als: no variation has the label \"no-q\""), std::string::npos) << loadError(bad);
+  bad = text;
+  bad.replace(bad.find("consequence_class: 2"), 20, "consequence_class: 3");
+  EXPECT_NE(loadError(bad).find("consequence_class = 3: must be 1 or 2"), std::string::npos) << loadError(bad);
+}

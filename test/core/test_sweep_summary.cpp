@@ -130,10 +130,42 @@ TEST(SweepSummary, StormsFitTheirSeedsMaxima) {
   std::ostringstream csv;
   md::writeStormLineStatsCsv(csv, st, md::GumbelMethod::Moments);
   EXPECT_EQ(csv.str().substr(0, csv.str().find('\n')),
-            "storm,line,seeds,max_of_max,mean_of_max,std_of_max,gumbel_fit,gumbel_location,gumbel_scale,mpm,mbl,mpm_utilization");
-  EXPECT_NE(csv.str().find("\nstorm-b,leg,1,90,90,,,,,,,\n"), std::string::npos) << csv.str();
+            "storm,line,seeds,max_of_max,mean_of_max,std_of_max,gumbel_fit,gumbel_location,gumbel_scale,mpm,mbl,mpm_utilization,"
+            "mean_tension,limit_state,t_c_mean,t_c_dyn,design_tension,characteristic_strength,design_utilization,design_pass");
+  EXPECT_NE(csv.str().find("\nstorm-b,leg,1,90,90,,,,,,,,0,,,,,,,\n"), std::string::npos) << csv.str();
   std::ostringstream cc;
   md::writeCaseLineStatsCsv(cc, {cases[0]});
   EXPECT_EQ(cc.str(), "case,storm,line,samples,max_tension,mean_tension,std_tension,mbl,utilization,top_offset\n"
                       "storm-a_seed-0,storm-a,leg,0,100,0,0,400,0,0\n");
+}
+
+// The line check over storms (designCheckStorms): T_c,mean is the mean over the seeds of each
+// case's mean tension, T_c,dyn = MPM - T_c,mean, the factors by limit state, by hand.
+TEST(SweepSummary, DesignCheckOfStormsByHand) {
+  std::vector<md::CaseLineStats> cases;
+  for (const char* storm : {"a", "b"})
+    for (int k = 0; k < 2; ++k) {
+      md::CaseLineStats c;
+      c.case_name = std::string(storm) + "_seed-" + std::to_string(k);
+      c.storm = storm;
+      c.line = "leg";
+      c.max = 300.0 + 20.0 * k;  // maxima 300, 320
+      c.mean = 100.0 + 10.0 * k;  // means 100, 110: T_c,mean 105
+      c.mbl = 500.0;
+      cases.push_back(c);
+    }
+  auto st = md::stormLineStats(cases, md::GumbelMethod::Moments);
+  ASSERT_EQ(st.size(), 2u);
+  md::designCheckStorms(st, {false, true}, 1);
+  const double mpm = st[0].mpm;
+  EXPECT_NEAR(st[0].mean_tension, 105.0, kSum * 105);
+  EXPECT_EQ(st[0].limit_state, md::LimitState::Uls);
+  EXPECT_NEAR(st[0].design.design_tension, 1.10 * 105.0 + 1.50 * (mpm - 105.0), kSum * 500);
+  EXPECT_NEAR(st[0].design.strength, 0.95 * 500.0, kSum * 500);
+  EXPECT_EQ(st[1].limit_state, md::LimitState::Als);
+  EXPECT_NEAR(st[1].design.design_tension, 1.00 * 105.0 + 1.10 * (mpm - 105.0), kSum * 500);
+  std::ostringstream csv;
+  md::writeStormLineStatsCsv(csv, st, md::GumbelMethod::Moments);
+  EXPECT_NE(csv.str().find(",ULS,105,"), std::string::npos) << csv.str();
+  EXPECT_NE(csv.str().find(",ALS,105,"), std::string::npos) << csv.str();
 }

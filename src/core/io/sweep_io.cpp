@@ -27,11 +27,24 @@ namespace fs = std::filesystem;
 using namespace yaml;
 
 /// The keys whose values are file names (relative to the file they are written in).
-const std::vector<std::string> kPathKeys = {"environment.seabed.grid_file", "vessel.motion_table",
-                                            "dynamics.gnss.track"};
+const std::vector<std::string> kPathKeys = {"environment.seabed.grid_file", "environment.current.file",
+                                            "vessel.motion_table", "vessel.raos.file", "dynamics.gnss.track"};
 
 /// Most cases a sweep may expand to (a typo in a range must not write millions of files).
 constexpr std::size_t kMaxCases = 100000;
+
+/// statistics.design_check: {consequence_class: 1 | 2, als: [labels]} (the labels are checked
+/// against the variations once they are read).
+void readDesignCheck(const Item& it, SweepSpec& spec) {
+  const Map m(it, {"consequence_class", "als"});
+  const Item ci = m.required("consequence_class", "1 or 2 (DNV-OS-E301)");
+  const long long c = readInteger(ci);
+  if (c != 1 && c != 2) ci.fail("must be 1 or 2 (DNV-OS-E301's consequence classes)");
+  spec.design_class = static_cast<int>(c);
+  spec.als_labels.clear();
+  if (m.has("als"))
+    for (const Item& li : listItems(m.at("als"))) spec.als_labels.push_back(readString(li));
+}
 
 bool isPathKey(const std::string& key) {
   for (const auto& k : kPathKeys)
@@ -422,8 +435,9 @@ SweepSpec loadSweepFromString(const std::string& yaml_text, const std::string& d
     }
   }
   if (presentAndNotNull(top, "statistics")) {
-    const Map sm(top.at("statistics"), {"gumbel_fit", "skip_time"});
+    const Map sm(top.at("statistics"), {"gumbel_fit", "skip_time", "design_check"});
     if (sm.has("skip_time")) spec.skip_time = sm.number("skip_time", Range::NonNegative);
+    if (sm.has("design_check")) readDesignCheck(sm.at("design_check"), spec);
     if (sm.has("gumbel_fit")) {
       const Item gi = sm.at("gumbel_fit");
       try {
@@ -432,6 +446,15 @@ SweepSpec loadSweepFromString(const std::string& yaml_text, const std::string& d
         gi.failQuoted("needs moments or mle");
       }
     }
+  }
+  for (const std::string& label : spec.als_labels) {
+    bool found = false;
+    for (const auto& v : spec.variations)
+      for (const auto& val : v.values) found = found || val.label == label;
+    if (!found)
+      Map(top.at("statistics"), {"gumbel_fit", "skip_time", "design_check"})
+          .at("design_check")
+          .failNoValue("als: no variation has the label " + quoted(label));
   }
   double count = 1.0;
   for (const auto& v : spec.variations) count *= static_cast<double>(v.values.size());
@@ -507,10 +530,14 @@ std::string caseProblemText(const SweepSpec& spec, const SweepCase& c, const std
     } catch (const YAML::Exception& ex) {
       throw ProblemError(context + ": " + e.key + ": " + ex.what());
     }
-    if (e.kind == SweepEdit::Kind::Set && e.path_value) {  // a file named by the sweep: relative to the sweep file
+    if (e.kind != SweepEdit::Kind::Set) return;
+    // A file named by the sweep, as the value itself or inside a section it sets
+    // (`vessel.raos: {file: ...}`): relative to the sweep file.
+    for (const auto& k : kPathKeys) {
+      if (k != e.key && k.rfind(e.key + ".", 0) != 0) continue;
       std::string v;
-      if (scalarAt(root, e.key, v) && !v.empty())
-        setScalar(root, e.key, fs::absolute(sections::relativeTo(v, spec.sweep_dir)).lexically_normal().string());
+      if (scalarAt(root, k, v) && !v.empty())
+        setScalar(root, k, fs::absolute(sections::relativeTo(v, spec.sweep_dir)).lexically_normal().string());
     }
   };
   for (const SweepEdit& e : spec.common) apply(e, "set/remove (every case)");
@@ -538,6 +565,8 @@ SweepManifest manifestOf(const SweepSpec& spec, const std::vector<SweepCase>& ca
   m.name = spec.name;
   m.gumbel = spec.gumbel;
   m.skip_time = spec.skip_time;
+  m.design_class = spec.design_class;
+  m.als_labels = spec.als_labels;
   for (const auto& v : spec.variations) {
     SweepManifest::Variation mv;
     mv.name = v.name;
@@ -559,6 +588,9 @@ std::string manifestText(const SweepManifest& m) {
   e << YAML::Key << "name" << YAML::Value << m.name;
   e << YAML::Key << "gumbel_fit" << YAML::Value << gumbelMethodName(m.gumbel);
   e << YAML::Key << "skip_time" << YAML::Value << fmt12(m.skip_time);
+  if (m.design_class > 0)
+    e << YAML::Key << "design_check" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "consequence_class"
+      << YAML::Value << m.design_class << YAML::Key << "als" << YAML::Value << YAML::Flow << m.als_labels << YAML::EndMap;
   e << YAML::Key << "variations" << YAML::Value << YAML::BeginSeq;
   for (const auto& v : m.variations) {
     e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << v.name << YAML::Key << "seeds"
@@ -583,9 +615,15 @@ SweepManifest loadManifestFromFile(const std::string& path) {
   try {
     const YAML::Node root = sections::parseYaml(sections::readFileText(path));
     const Item top_item{root, "", YAML::Mark::null_mark()};
-    const Map top(top_item, {"name", "gumbel_fit", "skip_time", "variations", "cases"});
+    const Map top(top_item, {"name", "gumbel_fit", "skip_time", "design_check", "variations", "cases"});
     SweepManifest m;
     m.skip_time = top.number("skip_time", Range::NonNegative);
+    if (top.has("design_check")) {
+      SweepSpec d;
+      readDesignCheck(top.at("design_check"), d);
+      m.design_class = d.design_class;
+      m.als_labels = d.als_labels;
+    }
     m.name = readString(top.required("name"));
     const Item gi = top.required("gumbel_fit");
     try {

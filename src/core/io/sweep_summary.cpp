@@ -208,8 +208,10 @@ std::vector<StormLineStats> stormLineStats(const std::vector<CaseLineStats>& cas
     s.seeds = g.size();
     s.mbl = g.front()->mbl;
     std::vector<double> maxima;
+    double mean_sum = 0.0;
     for (const auto* c : g) {
       maxima.push_back(c->max);
+      mean_sum += c->mean;
       if (c->mbl != s.mbl) s.mbl = 0.0;  // different materials across seeds: no single MBL
     }
     double sum = 0.0;
@@ -227,6 +229,7 @@ std::vector<StormLineStats> stormLineStats(const std::vector<CaseLineStats>& cas
       s.mpm = kNaN;
     }
     s.mpm_utilization = s.mbl > 0.0 && s.fitted ? s.mpm / s.mbl : kNaN;
+    s.mean_tension = mean_sum / static_cast<double>(g.size());
     out.push_back(s);
   }
   return out;
@@ -240,15 +243,34 @@ void writeCaseLineStatsCsv(std::ostream& out, const std::vector<CaseLineStats>& 
         << num(r.utilization) << "," << num(r.top_offset) << "\n";
 }
 
+void designCheckStorms(std::vector<StormLineStats>& rows, const std::vector<bool>& als, int consequence_class) {
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    StormLineStats& r = rows[i];
+    r.checked = r.fitted && r.mbl > 0.0;
+    if (!r.checked) continue;
+    r.limit_state = i < als.size() && als[i] ? LimitState::Als : LimitState::Uls;
+    r.design = designCheck(r.mean_tension, r.mpm, r.mbl, dnvFactors(consequence_class, r.limit_state));
+  }
+}
+
 void writeStormLineStatsCsv(std::ostream& out, const std::vector<StormLineStats>& rows, GumbelMethod method) {
   out << "storm,line,seeds,max_of_max,mean_of_max,std_of_max,gumbel_fit,gumbel_location,gumbel_scale,mpm,mbl,"
-         "mpm_utilization\n";
-  for (const auto& r : rows)
+         "mpm_utilization,mean_tension,limit_state,t_c_mean,t_c_dyn,design_tension,characteristic_strength,"
+         "design_utilization,design_pass\n";
+  for (const auto& r : rows) {
     out << cell(r.storm) << "," << cell(r.line) << "," << r.seeds << "," << num(r.max_of_max) << ","
         << num(r.mean_of_max) << "," << num(r.std_of_max) << "," << (r.fitted ? gumbelMethodName(method) : "") << ","
         << (r.fitted ? num(r.fit.location) : std::string()) << "," << (r.fitted ? num(r.fit.scale) : std::string())
         << "," << num(r.mpm) << "," << (r.mbl > 0.0 ? num(r.mbl) : std::string()) << "," << num(r.mpm_utilization)
-        << "\n";
+        << "," << num(r.mean_tension) << ",";
+    if (r.checked)
+      out << toString(r.limit_state) << "," << num(r.design.t_mean) << "," << num(r.design.t_dyn) << ","
+          << num(r.design.design_tension) << "," << num(r.design.strength) << "," << num(r.design.utilization) << ","
+          << (r.design.pass ? "pass" : "FAIL");
+    else
+      out << ",,,,,,";
+    out << "\n";
+  }
 }
 
 }  // namespace core

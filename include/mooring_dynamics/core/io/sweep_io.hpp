@@ -47,6 +47,11 @@ struct SweepSpec {
   std::vector<SweepVariation> variations;
   GumbelMethod gumbel = GumbelMethod::Moments;
   double skip_time = 0.0;  ///< [s] statistics leave out the samples before this time (the start-up transient)
+  /// `statistics.design_check`: the DNV-OS-E301-style line check (model/design_check.hpp) in
+  /// consequence class 1 or 2; 0 = none. Storms with one of `als_labels` (labels of any variation,
+  /// e.g. the broken-line values) are accidental (ALS), the others ULS.
+  int design_class = 0;
+  std::vector<std::string> als_labels;
 };
 
 /// A case: one value of every variation.
@@ -78,6 +83,8 @@ struct SweepManifest {
   std::string name;
   GumbelMethod gumbel = GumbelMethod::Moments;
   double skip_time = 0.0;
+  int design_class = 0;                 ///< as SweepSpec
+  std::vector<std::string> als_labels;  ///< as SweepSpec
   struct Variation {
     std::string name;
     bool seeds = false;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mooring_dynamics/core/model/design_check.hpp"
 #include "mooring_dynamics/core/model/extremes.hpp"
 
 namespace mooring_dynamics {
@@ -41,6 +42,10 @@ struct StormLineStats {
   double mpm = 0.0;                  ///< most probable maximum [N]: the fit's mode; NaN when not fitted
   double mbl = 0.0;                  ///< as CaseLineStats
   double mpm_utilization = 0.0;      ///< mpm / mbl; NaN without mbl or fit
+  double mean_tension = 0.0;         ///< mean over the seeds of each case's mean top tension [N]
+  bool checked = false;              ///< designCheckStorms made the line check (needs mbl and a fit)
+  LimitState limit_state = LimitState::Uls;
+  DesignCheck design;                ///< T_c,mean = mean_tension, MPM = mpm (design_check.hpp)
 };
 
 /// The line statistics of a finished case: `problem_path` is the case's problem file (line names,
@@ -52,6 +57,10 @@ std::vector<CaseLineStats> caseLineStats(const std::string& problem_path, const 
 
 /// Group by storm and line (in order of first appearance) and fit the per-seed maxima.
 std::vector<StormLineStats> stormLineStats(const std::vector<CaseLineStats>& cases, GumbelMethod method);
+
+/// The line check of every fitted storm-line with an MBL: `als[i]` true where storm i of `rows`
+/// is an accidental case (a line broken); factors of DNV-OS-E301 for `consequence_class`.
+void designCheckStorms(std::vector<StormLineStats>& rows, const std::vector<bool>& als, int consequence_class);
 
 /// CSV with a header; empty cells for NaN (no mbl, no offset, no fit). 12 significant digits.
 void writeCaseLineStatsCsv(std::ostream& out, const std::vector<CaseLineStats>& rows);
