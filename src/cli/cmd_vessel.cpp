@@ -1,6 +1,7 @@
 // cable_sim stiffness / offset: the moored vessel's engineering curves from its static wrench
 // (solvers/vessel_statics): the 6 x 6 mooring stiffness at the file's pose, and the offset curve
 // (wrench and most loaded line against an offset along or about one body axis).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -16,6 +17,8 @@
 #include "gnss_input.hpp"
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/io/vessel_motion_io.hpp"
+#include "mooring_dynamics/core/model/sea_state_motion.hpp"
+#include "mooring_dynamics/core/solvers/vessel_motion_source.hpp"
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
 #include "mooring_dynamics/core/solvers/vessel_statics.hpp"
 
@@ -180,12 +183,33 @@ int runOffset(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
   return kExitOk;
 }
 
+/// Where the vessel's motion comes from, for the summary.
+static std::string motionSourceText(const core::SystemProblem& s) {
+  if (s.vessel.sea_state) {
+    const core::WaveSpec& w = s.environment.waves;
+    std::string sea = w.type == core::WaveSpec::Type::Regular
+                          ? "regular wave H " + fmtNum("%g", w.height) + " m, T " + fmtNum("%g", w.period) + " s"
+                          : "sea state Hs " + fmtNum("%g", w.hs) + " m, Tp " + fmtNum("%g", w.tp) + " s, seed " +
+                                std::to_string(w.seed);
+    return sea + ", toward " + fmtNum("%g", w.direction * 180.0 / 3.14159265358979323846) + " deg, RAOs " +
+           s.vessel.raos.file + (s.vessel.low_frequency ? ", slow drift" : "") +
+           (s.vessel.wave_drift ? (s.vessel.drift.newman ? " with Newman's wave drift" : " with mean wave drift") : "");
+  }
+  if (s.vessel.low_frequency) return "slow drift in still water";
+  if (!s.vessel.motion_table.empty()) return s.vessel.motion_table;
+  return "held at the file's pose";
+}
+
 int runVesselDynamic(const core::SystemProblem& s, int threads, const std::string& out_dir, std::ostream& out,
                      std::ostream& err) {
-  // The samples: the motion table's rows, or the file's pose held at every dt.
+  // The samples: the motion table's rows, the motion the file computes (sea state, slow drift),
+  // or the file's pose held at every dt.
   std::vector<core::PoseSample> samples;
-  if (s.dynamics.gnss.enabled && !s.vessel.motion_table.empty()) {
-    err << kProg << ": error: dynamics.gnss and vessel.motion_table: give one motion of the vessel\n";
+  std::unique_ptr<core::VesselMotionSource> source;
+  const bool computed = s.vessel.sea_state || s.vessel.low_frequency;
+  if (s.dynamics.gnss.enabled && (!s.vessel.motion_table.empty() || computed)) {
+    err << kProg << ": error: dynamics.gnss and vessel." << (computed ? "sea_state/low_frequency" : "motion_table")
+        << ": give one motion of the vessel\n";
     return kExitBadInput;
   }
   if (s.dynamics.gnss.enabled) {  // a real ship track: its fixes become the vessel's pose samples
@@ -195,6 +219,21 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
       err << kProg << ": error: " << e.what() << "\n";
       return kExitBadInput;
     }
+  } else if (computed) {  // the hull's RAOs in the sea the lines see too, and/or its slow drift
+    if (!(s.dynamics.duration > 0.0)) {
+      err << kProg << ": error: dynamics.duration: not given (vessel.sea_state and vessel.low_frequency need it); "
+             "pass --duration S\n";
+      return kExitBadInput;
+    }
+    try {
+      source = std::make_unique<core::VesselMotionSource>(s);
+    } catch (const std::invalid_argument& e) {
+      err << kProg << ": error: vessel: " << e.what() << "\n";
+      return kExitBadInput;
+    }
+    const long n = static_cast<long>(std::floor(s.dynamics.duration / s.dynamics.dt + 1e-9));
+    samples.resize(static_cast<std::size_t>(n + 1));  // times only: the poses come from `source`
+    for (long k = 0; k <= n; ++k) samples[static_cast<std::size_t>(k)].t = static_cast<double>(k) * s.dynamics.dt;
   } else if (!s.vessel.motion_table.empty()) {
     try {
       samples = core::loadVesselMotionTable(s.vessel.motion_table);
@@ -235,8 +274,9 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
   std::vector<std::string> events;
   bool ok = true;
   std::string why;
-  for (const core::PoseSample& p : samples) {
-    if (p.t > t_last + 1e-9) break;
+  for (const core::PoseSample& given : samples) {
+    if (given.t > t_last + 1e-9) break;
+    const core::PoseSample p = source ? source->sample(given.t) : given;
     const core::VesselLockstep::Result r = run->onSample(p.t, p.pose, p.has_twist ? &p.twist : nullptr);
     if (!r.message.empty()) events.push_back("t = " + fmtNum("%g", p.t) + " s: " + toString(r.outcome) + ": " + r.message);
     if (r.outcome == core::VesselLockstep::Outcome::Failed || r.outcome == core::VesselLockstep::Outcome::RecoveredFailure) {
@@ -246,13 +286,23 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
       why = r.message.substr(0, r.message.find("; the last good state"));  // the lockstep's note on going on
       break;
     }
-    if (!r.publish) continue;
     const core::VesselWrench w = run->wrench();
+    if (source) source->advance(s.dynamics.dt, w);  // the lines' wrench moves the slow drift
+    if (!r.publish) continue;
     std::vector<double> row{p.t};
     for (int i = 0; i < 6; ++i) row.push_back(w.body6()[i]);
     for (int i = 0; i < 3; ++i) row.push_back(w.force_world[i]);
     for (int i = 0; i < 3; ++i) row.push_back(w.moment_world[i]);
     for (std::size_t i = 0; i < s.lines.size(); ++i) row.push_back(run->dynamics().line(i).topTension());
+    const Eigen::Matrix3d rot = p.pose.orientation.normalized().toRotationMatrix();  // R = Rz Ry Rx
+    row.push_back(p.pose.position.x());
+    row.push_back(p.pose.position.y());
+    row.push_back(p.pose.position.z());
+    row.push_back(std::atan2(rot(2, 1), rot(2, 2)));
+    row.push_back(std::asin(std::max(-1.0, std::min(1.0, -rot(2, 0)))));
+    row.push_back(std::atan2(rot(1, 0), rot(0, 0)));
+    if (s.vessel.wave_drift)
+      for (int i = 0; i < 3; ++i) row.push_back(source->lastDrift()[i]);
     rows.push_back(row);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -269,7 +319,7 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
     out << "  stopped        " << why << "\n"
         << "  last good      t = " << fmtNum("%g", t_good) << " s (the last sample written)\n";
   out << "  time           " << fmtNum("%g", simulated) << " s of vessel motion ("
-      << (s.vessel.motion_table.empty() ? std::string("held at the file's pose") : s.vessel.motion_table) << "), dt "
+      << motionSourceText(s) << "), dt "
       << fmtNum("%g", s.dynamics.dt) << " s, " << rows.size() << " samples\n";
   for (std::size_t i = 0; i < s.lines.size(); ++i) {
     double mx = 0.0;
@@ -280,6 +330,17 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
     double fmax = 0.0;
     for (const auto& r : rows) fmax = std::max(fmax, std::hypot(r[1], r[2]));
     out << "  wrench (body)  largest horizontal force " << fmtNum("%.1f", fmax) << " N\n";
+    if (computed) {  // the offset envelope of the vessel's origin from the file's pose
+      const std::size_t ix = 13 + s.lines.size();
+      double omax = 0.0, omean = 0.0;
+      for (const auto& r : rows) {
+        const double o = std::hypot(r[ix] - s.vessel.pose.position.x(), r[ix + 1] - s.vessel.pose.position.y());
+        omax = std::max(omax, o);
+        omean += o / static_cast<double>(rows.size());
+      }
+      out << "  vessel offset  largest horizontal " << fmtNum("%.2f", omax) << " m, mean " << fmtNum("%.2f", omean)
+          << " m (origin, from vessel.pose)\n";
+    }
   }
   std::vector<std::pair<std::string, long>> fallback;
   for (std::size_t i = 0; i < s.lines.size(); ++i)
@@ -296,7 +357,8 @@ int runVesselDynamic(const core::SystemProblem& s, int threads, const std::strin
                      f << "t,fx_body,fy_body,fz_body,mx_body,my_body,mz_body,fx_world,fy_world,fz_world,mx_world,my_world,"
                           "mz_world";
                      for (const auto& l : s.lines) f << "," << l.name << "_top_tension";
-                     f << "\n";
+                     f << ",vessel_x,vessel_y,vessel_z,vessel_roll,vessel_pitch,vessel_yaw";
+                     f << (s.vessel.wave_drift ? ",drift_x,drift_y,drift_n\n" : "\n");
                      for (const auto& r : rows) {
                        for (std::size_t c = 0; c < r.size(); ++c) f << (c ? "," : "") << csvNum(r[c]);
                        f << "\n";

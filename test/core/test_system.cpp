@@ -4,6 +4,9 @@
 // checked by hand, and the topology checks.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <unistd.h>
+
 #include <cmath>
 
 #include "mooring_dynamics/core/equations/catenary.hpp"
@@ -273,4 +276,93 @@ TEST(System, ShippedSystemConfigsLoad) {
     EXPECT_EQ(s.validate(), "");
   }
   EXPECT_GE(n, 2);
+}
+
+// vessel.sea_state with vessel.raos (issue "Design storms"): the sea becomes the lines' waves too
+// (one sea for hull and lines), the table is read with its conventions, and the errors name the key.
+TEST(System, VesselSeaStateSetsTheLinesWavesAndReadsTheRaos) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("md_test_system_raos_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  {
+    std::ofstream csv(dir / "hull.csv");
+    csv << "omega,heading_deg,dof,amplitude,phase_deg\n";
+    for (double w : {0.2, 1.0, 3.0})
+      for (int h : {0, 90, 180, 270})
+        for (int d = 1; d <= 6; ++d) csv << w << "," << h << "," << d << "," << (d == 3 ? 1.0 : 0.5) << ",30\n";
+  }
+  const std::string head = R"(model: 3d
+environment: {depth: 100}
+materials:
+  chain: {EA: 5.0e8, EI: 10, GJ: 1, mass: 40, added_mass: 5, wet_weight: 300, diameter: 0.08, cdn: 2.4, cdt: 1.15}
+vessel:
+  pose: {position: [0, 0, 0], yaw_deg: 0}
+  lines:
+    - {name: fwd, fairlead: [20, 0, -5], anchor: [270, 0, -100], segments: [{material: chain, length: 300, spacing: 10}]}
+)";
+  const std::string sea = "  sea_state: {type: jonswap, hs: 4, tp: 9, direction_deg: 180, seed: 3}\n";
+  const std::string raos = "  raos: {file: hull.csv, rotation_unit: deg, reference_point: [0, 0, -2]}\n";
+  const SystemProblem s = loadSystemFromString(head + sea + raos, dir.string());
+  EXPECT_TRUE(s.vessel.sea_state);
+  EXPECT_EQ(s.environment.waves.type, WaveSpec::Type::Jonswap) << "the lines see the vessel's sea";
+  EXPECT_EQ(s.environment.waves.seed, 3u);
+  EXPECT_NEAR(s.environment.waves.direction, kPi, 1e-12);
+  ASSERT_EQ(s.vessel.rao_table.omega().size(), 3u);
+  EXPECT_NEAR(std::abs(s.vessel.rao_table.value(4, 0, 0)), 0.5 * kPi / 180.0, 1e-15) << "pitch 0.5 deg/m";
+  EXPECT_EQ(s.vessel.raos.reference_point.z(), -2.0);
+
+  auto expectError = [&](const std::string& text, const std::string& want) {
+    try {
+      loadSystemFromString(text, dir.string());
+      ADD_FAILURE() << "loaded; expected an error with " << want;
+    } catch (const ProblemError& e) {
+      EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+    }
+  };
+  expectError(head + sea, "needs vessel.raos");
+  expectError(head + raos, "RAOs without vessel.sea_state");
+  expectError(head + sea + raos + "  motion_table: m.csv\n", "give one motion of the vessel");
+  std::string both = head + sea + raos;
+  both.replace(both.find("environment: {depth: 100}"), 25, "environment: {depth: 100, waves: {type: regular, height: 1, period: 8}}");
+  expectError(both, "give the sea once");
+  expectError(head + sea + "  raos: {file: hull.4}\n", "ulen");
+  expectError(head + sea + "  raos: {file: hull.txt}\n", "neither .4 nor .csv");
+  expectError(head + sea + "  raos: {file: hull.csv, extend: guess}\n", "vessel.raos.extend = \"guess\": must be one of error, zero, hold");
+  // A sea wider than the table (0.2 to 3 rad/s): Tp 40 s puts half the band below 0.2 rad/s.
+  std::string wide = head + sea + raos;
+  wide.replace(wide.find("tp: 9"), 5, "tp: 40");
+  expectError(wide, "outside the RAO table's 0.2 to 3 rad/s");
+  std::string held = wide;
+  held.replace(held.find("reference_point"), 15, "extend: hold, reference_point");
+  EXPECT_NO_THROW(loadSystemFromString(held, dir.string()));
+
+  // low_frequency.wave_drift: a CSV in SI read as it stands; WAMIT values scaled by rho g ULEN.
+  {
+    std::ofstream csv(dir / "drift.csv");
+    csv << "omega,heading_deg,surge,sway,yaw\n";
+    for (double w : {0.2, 1.0, 3.0})
+      for (int h : {0, 90, 180, 270}) csv << w << "," << h << "," << -1000.0 * w << "," << 500.0 << ",0\n";
+    std::ofstream w8(dir / "drift.8");
+    for (double per : {2.0, 6.0, 40.0})
+      for (int h : {0, 90, 180, 270})
+        for (int m : {1, 2, 6}) w8 << per << " " << h << " " << h << " " << m << " 0.5 0 0.5 0\n";
+  }
+  const std::string lf = "  low_frequency: {mass: 2.0e6, yaw_inertia: 1.0e9, wave_drift: {file: drift.csv}}\n";
+  const SystemProblem d = loadSystemFromString(head + sea + raos + lf, dir.string());
+  EXPECT_TRUE(d.vessel.wave_drift);
+  EXPECT_TRUE(d.vessel.drift.newman);
+  EXPECT_NEAR(d.vessel.drift_table.value(0, 2, 1).real(), -1000.0, 1e-9);
+  const std::string lf8 = "  low_frequency: {mass: 2.0e6, yaw_inertia: 1.0e9, wave_drift: {file: drift.8, ulen: 2, "
+                          "slowly_varying: none}}\n";
+  const SystemProblem d8 = loadSystemFromString(head + sea + raos + lf8, dir.string());
+  EXPECT_FALSE(d8.vessel.drift.newman);
+  EXPECT_NEAR(d8.vessel.drift_table.value(5, 0, 0).real(), 0.5 * d8.environment.water_density * d8.environment.gravity * 4.0,
+              1e-6) << "yaw moment / (rho g A^2 ULEN^2)";
+  expectError(head + lf, "wave drift needs the sea");
+  expectError(head + sea + raos + "  low_frequency: {mass: 2.0e6, yaw_inertia: 1.0e9, wave_drift: {file: drift.8}}\n",
+              "ulen");
+  expectError(head + sea + raos + "  low_frequency: {mass: 2.0e6, yaw_inertia: 1.0e9, wave_drift: {file: drift.csv, "
+                                  "slowly_varying: full}}\n",
+              "must be one of newman, none");
+  fs::remove_all(dir);
 }

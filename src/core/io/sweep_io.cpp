@@ -28,7 +28,8 @@ using namespace yaml;
 
 /// The keys whose values are file names (relative to the file they are written in).
 const std::vector<std::string> kPathKeys = {"environment.seabed.grid_file", "environment.current.file",
-                                            "vessel.motion_table", "vessel.raos.file", "dynamics.gnss.track"};
+                                            "vessel.motion_table", "vessel.raos.file", "vessel.low_frequency.wave_drift.file",
+                                            "dynamics.gnss.track"};
 
 /// Most cases a sweep may expand to (a typo in a range must not write millions of files).
 constexpr std::size_t kMaxCases = 100000;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,7 +11,9 @@
 
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/io/problem_io_dynamics.hpp"
+#include "mooring_dynamics/core/io/rao_io.hpp"
 #include "mooring_dynamics/core/io/yaml_reader.hpp"
+#include "mooring_dynamics/core/model/sea_state_motion.hpp"
 #include "problem_sections.hpp"
 
 namespace mooring_dynamics {
@@ -20,6 +23,7 @@ namespace {
 using namespace yaml;
 using namespace sections;
 using problem_io_detail::readDynamics;
+using problem_io_detail::readWaves;
 
 /// A point position: [x, y, z] or {x, y, z} [m].
 void readPosition(const Item& it, double& x, double& y, double& z) {
@@ -106,9 +110,130 @@ struct PointNames {
   std::vector<std::string> names;
 };
 
-/// The vessel section: its frame, pose and motion table (its lines come after the system's own).
+/// One of `choices` (the first is the default when the key is absent), as its index.
+std::size_t readChoice(const Map& m, const std::string& key, const std::vector<std::string>& choices) {
+  if (!m.has(key)) return 0;
+  const std::string v = readString(m.at(key));
+  for (std::size_t i = 0; i < choices.size(); ++i)
+    if (v == choices[i]) return i;
+  std::string list;
+  for (const std::string& c : choices) list += (list.empty() ? "" : ", ") + c;
+  m.at(key).failQuoted("must be one of " + list);
+  return 0;
+}
+
+/// vessel.raos: {file, format, ulen, phase, rotation_unit, reference_point, extend, symmetry}
+/// (docs/problem_format.md "vessel.raos"); the table is read here so that its errors name the key.
+void readRaos(const Item& it, const std::string& base_dir, Vessel& v) {
+  const Map m(it, {"file", "format", "ulen", "phase", "rotation_unit", "reference_point", "extend", "symmetry"});
+  RaoSource& how = v.raos;
+  const std::string rel = readString(m.required("file", "a WAMIT .4 file or a CSV of the hull's motion RAOs"));
+  how.file = relativeTo(rel, base_dir);
+  std::string format;
+  if (m.has("format")) {
+    format = readString(m.at("format"));
+    if (format != "wamit" && format != "csv") m.at("format").failQuoted("must be wamit or csv");
+  } else {
+    const std::string ext = std::filesystem::path(rel).extension().string();
+    if (ext == ".4") format = "wamit";
+    else if (ext == ".csv" || ext == ".CSV") format = "csv";
+    else m.at("file").failQuoted("ends in neither .4 nor .csv: say which with raos.format: wamit or csv");
+  }
+  how.format = format == "wamit" ? RaoSource::Format::Wamit : RaoSource::Format::Csv;
+  if (how.format == RaoSource::Format::Wamit) {
+    how.ulen = m.number("ulen", Range::Positive);  // required: a WAMIT run's ULEN is not in its .4 file
+  } else if (m.has("ulen")) {
+    m.at("ulen").fail("only for format wamit (a CSV gives rotations per metre; see rotation_unit)");
+  }
+  how.phase_lag = readChoice(m, "phase", {"lead", "lag"}) == 1;
+  if (m.has("rotation_unit") && how.format == RaoSource::Format::Wamit)
+    m.at("rotation_unit").fail("only for format csv (a WAMIT .4 file gives rotations as xi ULEN / A)");
+  how.rotations_in_deg = readChoice(m, "rotation_unit", {"rad", "deg"}) == 1;
+  if (m.has("reference_point")) {
+    double x = 0.0, y = 0.0, z = 0.0;
+    readPosition(m.at("reference_point"), x, y, z);
+    how.reference_point = Eigen::Vector3d(x, y, z);
+  }
+  const std::size_t ext = readChoice(m, "extend", {"error", "zero", "hold"});
+  how.extend = ext == 0 ? RaoExtend::None : ext == 1 ? RaoExtend::Zero : RaoExtend::Hold;
+  how.symmetry = readChoice(m, "symmetry", {"none", "port_starboard"}) == 1 ? RaoSymmetry::PortStarboard
+                                                                             : RaoSymmetry::None;
+  try {
+    v.rao_table = loadRaos(how);
+  } catch (const ProblemError& e) {
+    throw ProblemError(m.sub("file") + " = " + quoted(rel) + ": " + e.what() + lineSuffix(m.at("file").mark));
+  }
+}
+
+/// Three numbers [a, b, c].
+Eigen::Vector3d readTriple(const Item& it) {
+  const std::vector<Item> v = listItems(it);
+  if (v.size() != 3) it.fail("needs 3 values (surge, sway, yaw), has " + std::to_string(v.size()));
+  return Eigen::Vector3d(readNumber(v[0]), readNumber(v[1]), readNumber(v[2]));
+}
+
+/// vessel.low_frequency: {mass, yaw_inertia, added_mass, damping, mean_force} (HullSlowMotion).
+const std::vector<std::string> kSlowMotionKeys = {"mass", "yaw_inertia", "added_mass", "damping", "mean_force",
+                                                  "wave_drift"};
+
+void readSlowMotion(const Item& it, Vessel& v) {
+  const Map m(it, kSlowMotionKeys);
+  HullSlowMotionOptions& o = v.slow;
+  o.mass = m.number("mass", Range::Positive);
+  o.yaw_inertia = m.number("yaw_inertia", Range::Positive);
+  if (m.has("added_mass")) o.added_mass = readTriple(m.at("added_mass"));
+  if (m.has("damping")) o.damping = readTriple(m.at("damping"));
+  if (m.has("mean_force")) o.mean_force = readTriple(m.at("mean_force"));
+  const std::string e = o.validate();
+  if (!e.empty()) throw ProblemError(e + lineSuffix(it.mark));
+  v.low_frequency = true;
+}
+
+/// vessel.low_frequency.wave_drift: {file, format, ulen, extend, symmetry, slowly_varying}
+/// (WaveDrift; docs/problem_format.md); read after the sea state, whose frequencies and headings
+/// the table must cover.
+void readWaveDrift(const Item& it, const std::string& base_dir, SystemProblem& sp) {
+  const Map m(it, {"file", "format", "ulen", "extend", "symmetry", "slowly_varying"});
+  Vessel& v = sp.vessel;
+  RaoSource& how = v.drift.table;
+  const std::string rel = readString(m.required("file", "a WAMIT .8 or .9 file or a CSV of the hull's mean drift coefficients"));
+  how.file = relativeTo(rel, base_dir);
+  std::string format;
+  if (m.has("format")) {
+    format = readString(m.at("format"));
+    if (format != "wamit" && format != "csv") m.at("format").failQuoted("must be wamit or csv");
+  } else {
+    const std::string ext = std::filesystem::path(rel).extension().string();
+    if (ext == ".8" || ext == ".9") format = "wamit";
+    else if (ext == ".csv" || ext == ".CSV") format = "csv";
+    else m.at("file").failQuoted("ends in none of .8, .9, .csv: say which with wave_drift.format: wamit or csv");
+  }
+  how.format = format == "wamit" ? RaoSource::Format::Wamit : RaoSource::Format::Csv;
+  if (how.format == RaoSource::Format::Wamit) how.ulen = m.number("ulen", Range::Positive);
+  else if (m.has("ulen")) m.at("ulen").fail("only for format wamit (a CSV gives SI values)");
+  const std::size_t ext = readChoice(m, "extend", {"error", "zero", "hold"});
+  how.extend = ext == 0 ? RaoExtend::None : ext == 1 ? RaoExtend::Zero : RaoExtend::Hold;
+  how.symmetry = readChoice(m, "symmetry", {"none", "port_starboard"}) == 1 ? RaoSymmetry::PortStarboard
+                                                                             : RaoSymmetry::None;
+  v.drift.newman = readChoice(m, "slowly_varying", {"newman", "none"}) == 0;
+  try {
+    v.drift_table = loadDrift(how, sp.environment.water_density * sp.environment.gravity);
+  } catch (const ProblemError& e) {
+    throw ProblemError(m.sub("file") + " = " + quoted(rel) + ": " + e.what() + lineSuffix(m.at("file").mark));
+  }
+  try {  // the table must cover the sea: say so now, not at t = 0
+    const WaveField sea(sp.environment.waves, sp.environment.depth, sp.environment.gravity);
+    WaveDrift(sea, v.drift_table, v.drift.newman).meanForce(v.pose.yaw());
+  } catch (const std::invalid_argument& e) {
+    m.at("file").fail(e.what());
+  }
+  v.wave_drift = true;
+}
+
+/// The vessel section: its frame, pose and motion (a table, or a sea state through RAOs); its
+/// lines come after the system's own.
 void readVessel(const Item& vi, const std::string& base_dir, SystemProblem& sp) {
-  const Map vm(vi, {"frame", "pose", "lines", "motion_table"});
+  const Map vm(vi, {"frame", "pose", "lines", "motion_table", "sea_state", "raos", "low_frequency"});
   sp.vessel.present = true;
   if (vm.has("frame")) sp.vessel.frame = readString(vm.at("frame"));
   if (vm.has("motion_table")) {
@@ -116,6 +241,35 @@ void readVessel(const Item& vi, const std::string& base_dir, SystemProblem& sp) 
     sp.vessel.motion_table = (f.is_relative() && !base_dir.empty() ? std::filesystem::path(base_dir) / f : f).string();
   }
   if (vm.has("pose")) sp.vessel.pose = readPose(vm.at("pose"));
+  if (vm.has("low_frequency")) {
+    if (vm.has("motion_table"))
+      vm.at("low_frequency").fail("a motion table prescribes the whole motion: give low_frequency or motion_table");
+    readSlowMotion(vm.at("low_frequency"), sp.vessel);
+  }
+  if (vm.has("raos") && !vm.has("sea_state")) vm.at("raos").fail("RAOs without vessel.sea_state move nothing: give the sea");
+  std::optional<Item> drift;
+  if (vm.has("low_frequency")) {
+    const Map lf(vm.at("low_frequency"), kSlowMotionKeys);
+    if (lf.has("wave_drift")) drift = lf.at("wave_drift");
+  }
+  if (drift && !vm.has("sea_state")) drift->fail("wave drift needs the sea: give vessel.sea_state");
+  if (!vm.has("sea_state")) return;
+  const Item si = vm.at("sea_state");
+  if (vm.has("motion_table")) si.fail("give one motion of the vessel: sea_state or motion_table, not both");
+  if (sp.environment.waves.type != WaveSpec::Type::None)
+    si.fail("give the sea once: vessel.sea_state also sets the waves on the lines; remove environment.waves");
+  if (!vm.has("raos")) si.fail("needs vessel.raos (the hull's motion RAOs) to move the vessel");
+  sp.environment.waves = readWaves(si);
+  if (sp.environment.waves.type == WaveSpec::Type::None) si.fail("type none moves nothing: remove sea_state");
+  sp.vessel.sea_state = true;
+  readRaos(vm.at("raos"), base_dir, sp.vessel);
+  try {  // the table must cover the sea (frequencies, headings): say so now, not at t = 0
+    const WaveField sea(sp.environment.waves, sp.environment.depth, sp.environment.gravity);
+    SeaStateMotion(sea, sp.vessel.rao_table, sp.vessel.pose, sp.vessel.raos.reference_point);
+  } catch (const std::invalid_argument& e) {
+    vm.at("raos").fail(e.what());
+  }
+  if (drift) readWaveDrift(*drift, base_dir, sp);
 }
 
 /// One entry of `points`: its type, position (a vessel point's in the body frame), buoy or body.

@@ -18,8 +18,11 @@
 #include <string>
 #include <vector>
 
+#include "mooring_dynamics/core/model/hull_slow_motion.hpp"
 #include "mooring_dynamics/core/model/model.hpp"
 #include "mooring_dynamics/core/model/result.hpp"
+#include "mooring_dynamics/core/model/rao.hpp"
+#include "mooring_dynamics/core/model/wave_drift.hpp"
 #include "mooring_dynamics/core/model/rigid_pose.hpp"
 
 namespace mooring_dynamics {
@@ -65,6 +68,21 @@ struct Vessel {
   /// `vessel.motion_table`: CSV of the vessel's pose in time for `cable_sim dynamic` (t, x, y, z,
   /// qx, qy, qz, qw; world frame), path resolved against the problem file's folder; "" = none.
   std::string motion_table;
+  /// `vessel.sea_state` given: the vessel moves about `pose` in the sea of environment.waves (which
+  /// the file's vessel.sea_state sets, so that the lines see the same waves) by its RAOs
+  /// (SeaStateMotion); `raos` and `rao_table` say how and hold the table read.
+  bool sea_state = false;
+  RaoSource raos;
+  RaoTable rao_table;
+  /// `vessel.low_frequency` given: the hull's slow surge, sway and yaw move under the lines'
+  /// wrench and `slow.mean_force` (HullSlowMotion), in still water or under the sea state's motion.
+  bool low_frequency = false;
+  HullSlowMotionOptions slow;
+  /// `vessel.low_frequency.wave_drift` given: the mean and slowly varying wave drift of the sea
+  /// state on the slow motion (WaveDrift), from the coefficients read into `drift_table` (SI).
+  bool wave_drift = false;
+  WaveDriftSource drift;
+  RaoTable drift_table;
 };
 
 struct SystemProblem {
