@@ -241,19 +241,24 @@ TEST(SweepIo, AFileInsideASectionTheSweepSetsIsRelativeToTheSweepFile) {
   fs::remove_all(dir);
 }
 
-// The shipped design-storm sweep: 3 headings x 3 seeds, and every case file loads (the RAO table
-// covers each case's sea: frequencies and headings relative to the hull).
+// The shipped design-storm sweep: 3 headings x (intact, one line broken) x 3 seeds, and every case
+// file loads (the RAO and drift tables cover each case's sea: frequencies and headings relative
+// to the hull); the broken cases have 7 lines, and they are the ALS storms.
 TEST(SweepIo, ShippedSpreadMooringSweepCasesLoad) {
   const fs::path dir = tempDir("shipped_spread");
   const md::SweepSpec s = md::loadSweepFromFile(kConfig + "spread_mooring_sweep.yaml");
   const auto cases = md::expandSweep(s);
-  ASSERT_EQ(cases.size(), 9u);
+  ASSERT_EQ(cases.size(), 18u);
+  EXPECT_EQ(s.design_class, 1);
+  EXPECT_EQ(s.als_labels, std::vector<std::string>{"no-bow-stbd-2"});
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
     const md::SystemProblem p = md::loadSystemFromString(md::caseProblemText(s, c, dir.string()), dir.string());
     EXPECT_TRUE(p.vessel.sea_state);
-    EXPECT_TRUE(p.vessel.motion_table.empty()) << "the sweep removes the base file's table";
+    EXPECT_TRUE(p.vessel.low_frequency && p.vessel.wave_drift);
     EXPECT_EQ(p.dynamics.duration, 10800.0) << "3-hour storms";
+    const bool broken = c.name.find("no-bow-stbd-2") != std::string::npos;
+    EXPECT_EQ(p.lines.size(), broken ? 7u : 8u);
   }
   fs::remove_all(dir);
 }
