@@ -9,7 +9,8 @@
 //   cases/<case>.yaml      the case's problem file: `cable_sim dynamic DIR/cases/<case>.yaml` reruns it
 //   results/<case>/        a finished case: what `cable_sim dynamic --out` writes, and run.log
 //   failed/<case>/         a failed case: its outputs so far, run.log and error.txt
-//   summary.csv, storms.csv, status.csv, utilization_vs_<variation>.png   (the summary)
+//   summary.csv, storms.csv, status.csv, offsets.csv, utilization_vs_<variation>.png   (the summary)
+//   report.md, exceedance_<storm>.png, vessel_offset.png   (the report: sweep_report.hpp)
 //   jobs.txt / sweep.slurm (--emit)
 // A case runs into results/.<case>.tmp.<host>.<pid> and is renamed when it ends: a results/<case>
 // folder is always complete, and a sweep started again skips it.
@@ -40,6 +41,7 @@
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/io/sweep_io.hpp"
 #include "mooring_dynamics/core/io/sweep_summary.hpp"
+#include "sweep_report.hpp"
 
 namespace mooring_dynamics {
 namespace cli {
@@ -490,6 +492,10 @@ int emitJobs(const std::string& kind, const Written& w, const SweepDirs& d, std:
 // ---------------------------------------------------------------------------------------------
 // Collecting: summary tables and plots
 
+/// The vessel offset trace in the report's plot keeps every this many samples (10 s at dt 0.1 s:
+/// the slow drift's periods are minutes; a 3-hour storm gives ~1000 points per seed).
+constexpr std::size_t kOffsetTraceStride = 100;
+
 std::string firstLine(const fs::path& p) {
   std::ifstream f(p);
   std::string l;
@@ -609,6 +615,7 @@ int collect(const fs::path& root, std::ostream& out, std::ostream& err) {
     return kExitBadInput;
   }
   std::vector<core::CaseLineStats> rows;
+  std::vector<core::CaseVesselOffset> offsets;
   std::vector<std::pair<std::string, std::string>> status;  // case, status/message
   std::size_t done = 0, failed = 0, pending = 0;
   std::map<std::string, const core::SweepCase*> storm_case;
@@ -620,6 +627,9 @@ int collect(const fs::path& root, std::ostream& out, std::ostream& err) {
         const auto s = core::caseLineStats(d.caseFile(c.name).string(), (d.results / c.name).string(), m.skip_time,
                                            c.name, c.storm);
         rows.insert(rows.end(), s.begin(), s.end());
+        core::CaseVesselOffset o;
+        if (core::caseVesselOffset((d.results / c.name).string(), m.skip_time, c.name, c.storm, kOffsetTraceStride, o))
+          offsets.push_back(o);
         status.emplace_back(c.name, "done,");
         ++done;
       } catch (const std::exception& e) {
@@ -645,6 +655,9 @@ int collect(const fs::path& root, std::ostream& out, std::ostream& err) {
         for (const auto& s : status) o << s.first << "," << s.second << "\n";
       }, err))
     return kExitIo;
+  if (!offsets.empty() &&
+      !writeFile(root / "offsets.csv", [&](std::ostream& o) { core::writeCaseVesselOffsetCsv(o, offsets); }, err))
+    return kExitIo;
   out << m.name << ": " << done << " of " << m.cases.size() << " cases done, " << failed << " failed, " << pending
       << " not run\n";
   out << "wrote " << (root / "summary.csv").string() << " (case and line), " << (root / "storms.csv").string()
@@ -665,8 +678,9 @@ int collect(const fs::path& root, std::ostream& out, std::ostream& err) {
         << " kN" << (util && worst->mbl > 0.0 ? ", utilization " + fmtNum("%.3f", plotValue(*worst, true)) : std::string())
         << "\n";
   if (m.design_class > 0) out << designCheckText(m, storms);
+  const bool plots = gnuplotAvailable();
   if (!storms.empty()) {
-    if (!gnuplotAvailable()) {
+    if (!plots) {
       err << kProg << ": warning: gnuplot not found: no plots (install it with scripts/setup)\n";
     } else {
       for (std::size_t v = 0; v < m.variations.size(); ++v) {
@@ -677,6 +691,10 @@ int collect(const fs::path& root, std::ostream& out, std::ostream& err) {
       }
     }
   }
+  SweepReportInput report{&m, &rows, &storms, &offsets, done, failed, pending, plots};
+  std::vector<fs::path> written;
+  if (!writeSweepReport(root, report, written, err)) return kExitIo;
+  for (const auto& f : written) out << "wrote " << f.string() << "\n";
   if (failed > 0 || pending > 0) {
     err << kProg << ": " << failed << " case(s) failed and " << pending << " not run (see " << (root / "status.csv").string()
         << "; failed cases keep their run.log and error.txt in " << d.failed.string() << ")\n";

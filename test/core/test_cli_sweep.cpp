@@ -205,7 +205,14 @@ TEST_F(CliSweep, SummaryAgreesWithTheSeriesFiles) {
     EXPECT_GT(fs::file_size(dir / "utilization_vs_hs.png"), 1000u);
     EXPECT_GT(fs::file_size(dir / "utilization_vs_heading.png"), 1000u);
     EXPECT_FALSE(fs::exists(dir / "utilization_vs_seed.png"));  // the seeds are fitted, not plotted
+    EXPECT_GT(fs::file_size(dir / "exceedance_hs-0.5_heading-0.png"), 1000u) << "a storm's maxima and their fit";
   }
+  // The report: every storm's most loaded line, and no vessel section for a system without one.
+  const std::string report = readText(dir / "report.md");
+  EXPECT_NE(report.find(std::to_string(kCases) + " of " + std::to_string(kCases) + " cases done"), std::string::npos) << report;
+  EXPECT_NE(report.find("| hs-0.5_heading-0 | leg_"), std::string::npos) << report;
+  EXPECT_EQ(report.find("Vessel offset"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "offsets.csv"));
 }
 
 TEST_F(CliSweep, AKilledSweepResumesAndSkipsWhatWasFinished) {

@@ -169,3 +169,28 @@ TEST(SweepSummary, DesignCheckOfStormsByHand) {
   EXPECT_NE(csv.str().find(",ULS,105,"), std::string::npos) << csv.str();
   EXPECT_NE(csv.str().find(",ALS,105,"), std::string::npos) << csv.str();
 }
+
+// The vessel's offset in a case, from vessel_x and vessel_y of a hand-written vessel series:
+// distances from the first sample after skip_time, by hand; no vessel series: false.
+TEST(SweepSummary, VesselOffsetAgainstHandSums) {
+  const fs::path dir = tempDir("vessel_offset");
+  std::ofstream(dir / "vessel_timeseries.csv") << "t,fx_body,vessel_x,vessel_y,vessel_z\n"
+                                                  "0,1,10,20,0\n"
+                                                  "1,1,13,24,0\n"   // 5 m, before skip_time
+                                                  "2,1,10,23,0\n"   // 3 m
+                                                  "3,1,16,28,0\n"   // 10 m
+                                                  "4,1,10,20,0\n";  // 0 m
+  md::CaseVesselOffset o;
+  ASSERT_TRUE(md::caseVesselOffset(dir.string(), 1.5, "c1", "s", 2, o));
+  EXPECT_NEAR(o.max, 10.0, kSum);
+  EXPECT_NEAR(o.mean, (3.0 + 10.0 + 0.0) / 3.0, kSum);
+  ASSERT_EQ(o.trace.size(), 2u) << "every 2nd of the 3 samples used";
+  EXPECT_NEAR(o.trace[1].first, 0.0, kSum);
+  std::ostringstream csv;
+  md::writeCaseVesselOffsetCsv(csv, {o});
+  EXPECT_EQ(csv.str(), "case,storm,max_offset,mean_offset\nc1,s,10,4.33333333333\n");
+  const fs::path none = tempDir("no_vessel");
+  EXPECT_FALSE(md::caseVesselOffset(none.string(), 0.0, "c", "s", 1, o));
+  fs::remove_all(dir);
+  fs::remove_all(none);
+}

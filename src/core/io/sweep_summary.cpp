@@ -191,6 +191,39 @@ std::vector<CaseLineStats> caseLineStats(const std::string& problem_path, const 
   return out;
 }
 
+bool caseVesselOffset(const std::string& result_dir, double skip_time, const std::string& case_name,
+                      const std::string& storm, std::size_t stride, CaseVesselOffset& out) {
+  const fs::path file = fs::path(result_dir) / "vessel_timeseries.csv";
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return false;
+  const Table t = readTable(file.string());
+  if (!t.has("vessel_x") || !t.has("vessel_y")) return false;
+  const std::size_t ix = t.column("vessel_x"), iy = t.column("vessel_y");
+  out = CaseVesselOffset();
+  out.case_name = case_name;
+  out.storm = storm;
+  const double x0 = t.rows.front()[ix], y0 = t.rows.front()[iy];
+  std::size_t n = 0;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    const auto& r = t.rows[k];
+    if (r[0] < skip_time) continue;
+    const double dx = r[ix] - x0, dy = r[iy] - y0, o = std::hypot(dx, dy);
+    out.max = std::max(out.max, o);
+    sum += o;
+    if (n % std::max<std::size_t>(stride, 1) == 0) out.trace.emplace_back(dx, dy);
+    ++n;
+  }
+  if (n == 0) throw ProblemError(file.string() + ": no sample at t >= skip_time = " + std::to_string(skip_time) + " s");
+  out.mean = sum / static_cast<double>(n);
+  return true;
+}
+
+void writeCaseVesselOffsetCsv(std::ostream& out, const std::vector<CaseVesselOffset>& rows) {
+  out << "case,storm,max_offset,mean_offset\n";
+  for (const auto& r : rows) out << cell(r.case_name) << "," << cell(r.storm) << "," << num(r.max) << "," << num(r.mean) << "\n";
+}
+
 std::vector<StormLineStats> stormLineStats(const std::vector<CaseLineStats>& cases, GumbelMethod method) {
   std::vector<std::pair<std::string, std::string>> order;
   std::map<std::pair<std::string, std::string>, std::vector<const CaseLineStats*>> groups;

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mooring_dynamics/core/model/design_check.hpp"
@@ -29,6 +30,17 @@ struct CaseLineStats {
   /// (a single line's top, a system line's free upper point); NaN where the series has no
   /// position of it (a vessel's fairlead follows the vessel's prescribed motion; a fixed point).
   double top_offset = 0.0;
+};
+
+/// The moored vessel's horizontal offset in one case (vessel files): its body origin's distance in
+/// the horizontal plane (world frame) from its position at the first sample, over the samples at
+/// t >= skip_time, and a thinned trace of the offset for plots.
+struct CaseVesselOffset {
+  std::string case_name;
+  std::string storm;
+  double max = 0.0;   ///< largest horizontal offset [m]
+  double mean = 0.0;  ///< mean horizontal offset [m]
+  std::vector<std::pair<double, double>> trace;  ///< (dx, dy) [m], world axes, every `stride`-th sample
 };
 
 /// Statistics of one line over the seeds of one storm.
@@ -54,6 +66,14 @@ struct StormLineStats {
 /// left out. Throws ProblemError naming the file on a missing or malformed file or column.
 std::vector<CaseLineStats> caseLineStats(const std::string& problem_path, const std::string& result_dir,
                                          double skip_time, const std::string& case_name, const std::string& storm);
+
+/// The vessel offset of a finished vessel case (result_dir/vessel_timeseries.csv with the columns
+/// vessel_x and vessel_y); false when the case has no vessel series. Throws ProblemError naming
+/// the file when it is malformed. The trace keeps every `stride`-th sample (>= 1).
+bool caseVesselOffset(const std::string& result_dir, double skip_time, const std::string& case_name,
+                      const std::string& storm, std::size_t stride, CaseVesselOffset& out);
+/// CSV `case,storm,max_offset,mean_offset` [m].
+void writeCaseVesselOffsetCsv(std::ostream& out, const std::vector<CaseVesselOffset>& rows);
 
 /// Group by storm and line (in order of first appearance) and fit the per-seed maxima.
 std::vector<StormLineStats> stormLineStats(const std::vector<CaseLineStats>& cases, GumbelMethod method);
