@@ -122,29 +122,46 @@ std::size_t readChoice(const Map& m, const std::string& key, const std::vector<s
   return 0;
 }
 
+/// The common keys of a table section (`vessel.raos`, `low_frequency.wave_drift`): `file`
+/// (resolved against base_dir; returned as written), `format` (given, or from the extension: one
+/// of `wamit_exts` or .csv), `ulen` (required for wamit; `csv_ulen_note` says why a CSV has none),
+/// `extend` and `symmetry`.
+std::string readTableSource(const Map& m, const std::string& base_dir, const std::vector<std::string>& wamit_exts,
+                            const std::string& what, const std::string& csv_ulen_note, RaoSource& how) {
+  const std::string rel = readString(m.required("file", what));
+  how.file = relativeTo(rel, base_dir);
+  bool wamit = false;
+  if (m.has("format")) {
+    const std::string format = readString(m.at("format"));
+    if (format != "wamit" && format != "csv") m.at("format").failQuoted("must be wamit or csv");
+    wamit = format == "wamit";
+  } else {
+    const std::string ext = std::filesystem::path(rel).extension().string();
+    wamit = std::find(wamit_exts.begin(), wamit_exts.end(), ext) != wamit_exts.end();
+    if (!wamit && ext != ".csv" && ext != ".CSV") {
+      std::string list;
+      for (const std::string& e : wamit_exts) list += e + (wamit_exts.size() == 1 ? " nor " : ", ");
+      m.at("file").failQuoted(std::string(wamit_exts.size() == 1 ? "ends in neither " : "ends in none of ") + list +
+                              ".csv: say which with " + m.sub("format") + ": wamit or csv");
+    }
+  }
+  how.format = wamit ? RaoSource::Format::Wamit : RaoSource::Format::Csv;
+  if (wamit) how.ulen = m.number("ulen", Range::Positive);  // required: a WAMIT run's ULEN is not in its files
+  else if (m.has("ulen")) m.at("ulen").fail("only for format wamit (" + csv_ulen_note + ")");
+  const std::size_t ext = readChoice(m, "extend", {"error", "zero", "hold"});
+  how.extend = ext == 0 ? RaoExtend::None : ext == 1 ? RaoExtend::Zero : RaoExtend::Hold;
+  how.symmetry = readChoice(m, "symmetry", {"none", "port_starboard"}) == 1 ? RaoSymmetry::PortStarboard
+                                                                             : RaoSymmetry::None;
+  return rel;
+}
+
 /// vessel.raos: {file, format, ulen, phase, rotation_unit, reference_point, extend, symmetry}
 /// (docs/problem_format.md "vessel.raos"); the table is read here so that its errors name the key.
 void readRaos(const Item& it, const std::string& base_dir, Vessel& v) {
   const Map m(it, {"file", "format", "ulen", "phase", "rotation_unit", "reference_point", "extend", "symmetry"});
   RaoSource& how = v.raos;
-  const std::string rel = readString(m.required("file", "a WAMIT .4 file or a CSV of the hull's motion RAOs"));
-  how.file = relativeTo(rel, base_dir);
-  std::string format;
-  if (m.has("format")) {
-    format = readString(m.at("format"));
-    if (format != "wamit" && format != "csv") m.at("format").failQuoted("must be wamit or csv");
-  } else {
-    const std::string ext = std::filesystem::path(rel).extension().string();
-    if (ext == ".4") format = "wamit";
-    else if (ext == ".csv" || ext == ".CSV") format = "csv";
-    else m.at("file").failQuoted("ends in neither .4 nor .csv: say which with raos.format: wamit or csv");
-  }
-  how.format = format == "wamit" ? RaoSource::Format::Wamit : RaoSource::Format::Csv;
-  if (how.format == RaoSource::Format::Wamit) {
-    how.ulen = m.number("ulen", Range::Positive);  // required: a WAMIT run's ULEN is not in its .4 file
-  } else if (m.has("ulen")) {
-    m.at("ulen").fail("only for format wamit (a CSV gives rotations per metre; see rotation_unit)");
-  }
+  const std::string rel = readTableSource(m, base_dir, {".4"}, "a WAMIT .4 file or a CSV of the hull's motion RAOs",
+                                          "a CSV gives rotations per metre; see rotation_unit", how);
   how.phase_lag = readChoice(m, "phase", {"lead", "lag"}) == 1;
   if (m.has("rotation_unit") && how.format == RaoSource::Format::Wamit)
     m.at("rotation_unit").fail("only for format csv (a WAMIT .4 file gives rotations as xi ULEN / A)");
@@ -154,10 +171,6 @@ void readRaos(const Item& it, const std::string& base_dir, Vessel& v) {
     readPosition(m.at("reference_point"), x, y, z);
     how.reference_point = Eigen::Vector3d(x, y, z);
   }
-  const std::size_t ext = readChoice(m, "extend", {"error", "zero", "hold"});
-  how.extend = ext == 0 ? RaoExtend::None : ext == 1 ? RaoExtend::Zero : RaoExtend::Hold;
-  how.symmetry = readChoice(m, "symmetry", {"none", "port_starboard"}) == 1 ? RaoSymmetry::PortStarboard
-                                                                             : RaoSymmetry::None;
   try {
     v.rao_table = loadRaos(how);
   } catch (const ProblemError& e) {
@@ -196,25 +209,9 @@ void readWaveDrift(const Item& it, const std::string& base_dir, SystemProblem& s
   const Map m(it, {"file", "format", "ulen", "extend", "symmetry", "slowly_varying"});
   Vessel& v = sp.vessel;
   RaoSource& how = v.drift.table;
-  const std::string rel = readString(m.required("file", "a WAMIT .8 or .9 file or a CSV of the hull's mean drift coefficients"));
-  how.file = relativeTo(rel, base_dir);
-  std::string format;
-  if (m.has("format")) {
-    format = readString(m.at("format"));
-    if (format != "wamit" && format != "csv") m.at("format").failQuoted("must be wamit or csv");
-  } else {
-    const std::string ext = std::filesystem::path(rel).extension().string();
-    if (ext == ".8" || ext == ".9") format = "wamit";
-    else if (ext == ".csv" || ext == ".CSV") format = "csv";
-    else m.at("file").failQuoted("ends in none of .8, .9, .csv: say which with wave_drift.format: wamit or csv");
-  }
-  how.format = format == "wamit" ? RaoSource::Format::Wamit : RaoSource::Format::Csv;
-  if (how.format == RaoSource::Format::Wamit) how.ulen = m.number("ulen", Range::Positive);
-  else if (m.has("ulen")) m.at("ulen").fail("only for format wamit (a CSV gives SI values)");
-  const std::size_t ext = readChoice(m, "extend", {"error", "zero", "hold"});
-  how.extend = ext == 0 ? RaoExtend::None : ext == 1 ? RaoExtend::Zero : RaoExtend::Hold;
-  how.symmetry = readChoice(m, "symmetry", {"none", "port_starboard"}) == 1 ? RaoSymmetry::PortStarboard
-                                                                             : RaoSymmetry::None;
+  const std::string rel = readTableSource(m, base_dir, {".8", ".9"},
+                                          "a WAMIT .8 or .9 file or a CSV of the hull's mean drift coefficients",
+                                          "a CSV gives SI values", how);
   v.drift.newman = readChoice(m, "slowly_varying", {"newman", "none"}) == 0;
   try {
     v.drift_table = loadDrift(how, sp.environment.water_density * sp.environment.gravity);
