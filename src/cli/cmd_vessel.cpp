@@ -192,7 +192,7 @@ static std::string motionSourceText(const core::SystemProblem& s) {
                           : "sea state Hs " + fmtNum("%g", w.hs) + " m, Tp " + fmtNum("%g", w.tp) + " s, seed " +
                                 std::to_string(w.seed);
     return sea + ", toward " + fmtNum("%g", w.direction * 180.0 / 3.14159265358979323846) + " deg, RAOs " +
-           s.vessel.raos.file + (s.vessel.low_frequency ? ", slow drift" : "") +
+           fs::path(s.vessel.raos.file).lexically_normal().string() + (s.vessel.low_frequency ? ", slow drift" : "") +
            (s.vessel.wave_drift ? (s.vessel.drift.newman ? " with Newman's wave drift" : " with mean wave drift") : "");
   }
   if (s.vessel.low_frequency) return "slow drift in still water";

@@ -231,4 +231,40 @@ TEST_F(CliVessel, SeaStateRunIsTheRunOnItsHandWrittenMotionTable) {
   const RunResult c = run({"dynamic", (dir_ / "table.yaml").string(), "--out", (dir_ / "c").string(), "--no-progress"});
   ASSERT_EQ(c.code, 0) << c.out << c.err;
   EXPECT_NE(readText(dir_ / "c" / "vessel_timeseries.csv"), sa);
+
+  // With low_frequency and a drift table of -1000 N/m^2 in surge everywhere: a regular wave of
+  // amplitude 1 m pushes the hull with a^2 D = -1000 N at every sample (the drift columns), and
+  // the hull moves aft (-x) from rest.
+  {
+    std::ofstream d(dir_ / "drift.csv");
+    d << "omega,heading_deg,surge,sway,yaw\n";
+    for (double w : {0.2, 2.0})
+      for (int h : {0, 90, 180, 270}) d << w << "," << h << ",-1000,0,0\n";
+  }
+  std::string slow = sea;
+  slow.replace(slow.find("  raos: {file: hull.csv}\n"), 25,
+               "  raos: {file: hull.csv}\n  low_frequency: {mass: 1.0e5, yaw_inertia: 1.0e7, wave_drift: {file: drift.csv}}\n");
+  std::ofstream(dir_ / "slow.yaml") << slow;
+  const RunResult e = run({"dynamic", (dir_ / "slow.yaml").string(), "--out", (dir_ / "e").string(), "--no-progress"});
+  ASSERT_EQ(e.code, 0) << e.out << e.err;
+  EXPECT_NE(e.out.find("slow drift with Newman's wave drift"), std::string::npos) << e.out;
+  std::istringstream ts(readText(dir_ / "e" / "vessel_timeseries.csv"));
+  std::string line;
+  std::getline(ts, line);
+  ASSERT_EQ(line.substr(line.size() - 23), "drift_x,drift_y,drift_n");
+  int rows = 0;
+  double x_last = 0.0;
+  while (std::getline(ts, line)) {
+    std::vector<double> v;
+    std::istringstream cells(line);
+    std::string c;
+    while (std::getline(cells, c, ',')) v.push_back(std::stod(c));
+    ASSERT_GE(v.size(), 9u);
+    EXPECT_DOUBLE_EQ(v[v.size() - 3], -1000.0) << line;
+    EXPECT_DOUBLE_EQ(v[v.size() - 2], 0.0);
+    x_last = v[v.size() - 9];  // vessel_x
+    ++rows;
+  }
+  EXPECT_EQ(rows, 17);
+  EXPECT_LT(x_last, 0.0) << "the drift pushes the hull aft";
 }
