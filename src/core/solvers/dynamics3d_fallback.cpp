@@ -1,32 +1,7 @@
 // The fallback step of the 3-D dynamic solver (docs/method.md "Slack and snap: the fallback
 // step"): a base step that the implicit box scheme cannot take, even cut to its smallest size
-// (section 4.3), is taken by an explicit lumped-mass model of the same line over the same
-// interval, and the run goes on from its end state.
-//
-// Why: a line whose top goes wholly slack and is then overrun by its fairlead (the fairlead
-// moving down faster than the chain sinks) folds back on itself. The box scheme's unknowns
-// (strain, frame and curvature at the nodes) cannot follow a fold within one step, and Newton
-// fails at every step size. A lumped-mass line has no such limit: each node keeps its own
-// inertia and moves freely while its neighbours carry no tension.
-//
-// The model (the same physics as the box rows, lumped at the nodes):
-//  * masses: the line's mass per unit length times half of each adjacent interval, its added
-//    mass acting across the local tangent only; inline bodies at their junction node;
-//  * axial force of each interval from its chord length, T(eps) of the material (with its
-//    no-compression law where it has one), plus a proportional axial damping of ratio
-//    kAxialDampingRatio of the interval's own axial mode (the box scheme's numerical dissipation
-//    of the mesh mode plays that part in the implicit steps);
-//  * wet weight, normal and tangential quadratic drag on the velocity relative to the water
-//    (current and waves) on each interval's chord, times sqrt(1 + eps) as in the box rows;
-//  * the seabed as in the box rows (spring with its contact onset, dashpot);
-//  * bending and torsion are left out (chain and rope: EI is negligible next to the axial
-//    forces over a step; the fallback serves lines that fold, not rods);
-//  * the top follows its prescribed path, the anchor stays (or follows its motion); a released
-//    end is a free node.
-// Time integration: symplectic Euler on sub-steps of kCourant times the shortest axial wave
-// crossing time of an interval (and of the seabed spring's period), so that the snap's wave is
-// resolved. The water velocity is taken at the nodes' positions at the start of the step, at
-// both ends of the step, linear in time between.
+// (section 4.3), is taken by the explicit lumped-mass model of the same line over the same
+// interval (lumped_line.hpp, shared with the 2-D solver), and the run goes on from its end state.
 //
 // Back to the box unknowns at the end of the step: the positions as they are; the frame of each
 // node turned by the smallest rotation from its last tangent to the new one (mean of the
@@ -38,8 +13,10 @@
 // Not taken by the fallback (the step then fails as before, with the reason added to the
 // message): a force, buoy, body or drifting-buoy top, a step in which the winch runs
 // (fallbackUnavailable()). A body at a free lower end is a lumped mass (its mass plus added
-// mass) at node 0 with its weight and drag.
+// mass) at node 0 with its weight and drag. The top follows its prescribed path, the anchor
+// stays (or follows its motion); a released end is a free node.
 #include "dynamics3d_impl.hpp"
+#include "lumped_line.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -53,51 +30,14 @@ namespace core {
 
 namespace {
 
-/// Axial damping ratio of each interval's own axial mode (the highest mode of the lumped line,
-/// ~ 2 sqrt(EA/m)/h): proportional damping, so a mode of frequency w gets kAxialDampingRatio
-/// w / w_max, which leaves the line's physical modes (w << w_max) all but undamped.
-constexpr double kAxialDampingRatio = 0.5;
-/// Sub-step as a fraction of the stability limit of symplectic Euler (2 / w_max).
-constexpr double kCourant = 0.4;
-/// A node whose strain is below -kFoldedStrain (its intervals 0.1 % shorter than unstretched:
-/// chain heaped or folded, carrying no tension) marks the line as still folded after a fallback
-/// step. On the spread mooring at Hs 4 (30 s, 317 implicit tries right after a fallback step)
-/// 297 of the 302 tries from a folded state failed, and 11 of the 15 from an unfolded one
-/// converged; the five folded ones that converged were within -1.1e-4 of zero.
-constexpr double kFoldedStrain = 1e-3;
-/// For at most this long [s] of simulated time in a row base steps go to the fallback without an
-/// implicit try (whatever the steps' length: in lockstep every sample ends a step): a
-/// heap of chain lying on the seabed can keep a line "folded" long after the implicit step could
-/// take it again.
-constexpr double kMaxSkippedTime = 1.0;
-/// A converged implicit step whose top node is farther than this fraction of the top interval
-/// from the top's path is refused (topOffItsPath). With the top interval folded the box
-/// scheme's coordinates there are all but free: on the spread mooring at Hs 6 with 17.5 m
-/// intervals the top node wandered up to 13.8 m from its fairlead (median 0.35 m), and its
-/// strain rang from -6 % to +0.7 % in 0.01 s steps (3.7 MN spikes with the fairlead moving at
-/// 0.5 m/s). At 3.5 m intervals the top stayed within 0.15 m (4 %) through 150 s of Hs 6.
-constexpr double kTopOffPath = 0.05;
-/// A chord shorter than this fraction of its interval has no direction of its own [-].
-constexpr double kShortChord = 1e-6;
+using lumped::kFoldedStrain;
+using lumped::kMaxSkippedTime;
+using lumped::kTopOffPath;
 
 using Vec3 = Eigen::Vector3d;
 
-struct Lumped {
-  int n = 0;
-  std::vector<Vec3> x, v, f;
-  std::vector<double> drag_rate;  ///< d|drag| / d|v| at the node [N s/m] (semi-implicit drag)
-  std::vector<double> mass;       ///< structural mass [kg]
-  std::vector<double> added;      ///< added mass across the tangent [kg] (line)
-  std::vector<double> body_mass;  ///< inline bodies' mass plus added mass [kg] (isotropic)
-  std::vector<Vec3> tangent;      ///< unit tangent at the node (mean of the chords)
-  std::vector<char> fixed;        ///< prescribed (top, anchor) or tied to the node below (junction)
-};
-
-struct Water3 {
-  Vec3 w0, w1;  ///< water velocity at the start and end of the step
-};
-
-double sqr(double a) { return a * a; }
+using lumped::Line;
+using lumped::NodeWater;
 
 /// What the fallback does with the line's ends: held on their paths, or free (released).
 struct Ends {
@@ -157,182 +97,66 @@ std::string topOffItsPath(const DynamicSolver3D::Impl& im, const Eigen::VectorXd
 
 namespace {
 
-/// The line's state as lumped masses at the nodes; junction nodes (h = 0) are tied to the node
-/// below them.
-void lumpLine(const DynamicSolver3D::Impl& im, Lumped& L) {
-  const int n = im.nodes();
-  L.n = n;
-  L.x.assign(n, Vec3::Zero());
-  L.v.assign(n, Vec3::Zero());
-  L.f.assign(n, Vec3::Zero());
-  L.drag_rate.assign(n, 0.0);
-  L.mass.assign(n, 0.0);
-  L.added.assign(n, 0.0);
-  L.body_mass.assign(n, 0.0);
-  L.tangent.assign(n, Vec3::Zero());
-  L.fixed.assign(n, 0);
-  for (int j = 0; j < n; ++j) {
+/// The 3-D solver's side of the lumped model (lumped_line.hpp): the box rows' seabed and end
+/// body load, and the ends' paths.
+struct Model3 {
+  const DynamicSolver3D::Impl& im;
+  bool top_held, low_held;
+  Vec3 anchor0;  ///< the anchor where the step starts (it stays there unless it moves)
+  double seabed(const Material& m, const Vec3& x, const Vec3& v) const {
+    double y[N] = {0.0};
+    y[X] = x.x();
+    y[eq3d::Y] = x.y();
+    y[Z] = x.z();
+    y[U1] = v.x();
+    y[U2] = v.y();
+    y[U3] = v.z();
+    const double Rid[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // local = global: R[6..8] picks V_z
+    return seabedReaction(im.problem.environment, m, y, Rid);
+  }
+  Vec3 endBodyLoad(const Body& b, const Vec3& tangent, const Vec3& r) const {
+    double P[3] = {0.0, 0.0, 0.0};
+    eq3d::addBodyLoad(im.problem.environment, b, tangent.data(), r.data(), P);
+    return Vec3(P[0], P[1], P[2]);
+  }
+  bool topHeld() const { return top_held; }
+  bool lowHeld() const { return low_held; }
+  void top(double t, Vec3& x, Vec3& v) const {
+    const TopState s = im.top(t);
+    x = Vec3(s.x, s.y, s.z);
+    v = Vec3(s.vx, s.vy, s.vz);
+  }
+  void low(double t, Vec3& x, Vec3& v) const {
+    if (im.lower_path) {
+      const TopState s = im.lower_path(t);
+      x = Vec3(s.x, s.y, s.z);
+      v = Vec3(s.vx, s.vy, s.vz);
+    } else {
+      x = anchor0;
+      v.setZero();
+    }
+  }
+};
+
+lumped::Setup setupOf(const DynamicSolver3D::Impl& im) {
+  lumped::Setup s;
+  s.problem = &im.problem;
+  s.mesh = &im.mesh;
+  s.parted = im.parted;
+  s.end_body = endBody(im);
+  return s;
+}
+
+/// The line's state as lumped masses at the nodes.
+void lumpLine(const DynamicSolver3D::Impl& im, Line& L) {
+  lumped::lumpMasses(setupOf(im), L);
+  for (int j = 0; j < L.n; ++j) {
     const double* y = im.Y.data() + N * j;
     L.x[j] = Vec3(y[X], y[eq3d::Y], y[Z]);
     double V[3];
     globalVelocity(y, V);
     L.v[j] = Vec3(V[0], V[1], V[2]);
   }
-  for (int j = 0; j + 1 < n; ++j) {
-    const MeshInterval& iv = im.mesh.intervals[static_cast<std::size_t>(j)];
-    if (iv.h > 0.0) {
-      const Material& m = im.problem.materials[iv.material];
-      for (int k : {j, j + 1}) {
-        L.mass[k] += 0.5 * iv.h * m.mass;
-        L.added[k] += 0.5 * iv.h * m.added_mass;
-      }
-    } else {
-      for (std::size_t b : iv.bodies) {
-        const Body& body = im.problem.bodies[b];
-        L.body_mass[j] += body.mass + body.added_mass;
-      }
-    }
-  }
-  if (const Body* b = endBody(im)) L.body_mass[0] += b->mass + b->added_mass;
-}
-
-/// Unit tangents at the nodes: the mean of the adjacent chords' directions (one-sided at the
-/// ends and junctions).
-void updateTangents(const DynamicSolver3D::Impl& im, Lumped& L) {
-  const int n = L.n;
-  for (int j = 0; j < n; ++j) L.tangent[j].setZero();
-  for (int j = 0; j + 1 < n; ++j) {
-    const MeshInterval& iv = im.mesh.intervals[static_cast<std::size_t>(j)];
-    if (!(iv.h > 0.0) || j == im.parted) continue;
-    const Vec3 d = L.x[j + 1] - L.x[j];
-    const double len = d.norm();
-    if (len < kShortChord * iv.h) continue;
-    L.tangent[j] += d / len;
-    L.tangent[j + 1] += d / len;
-  }
-  for (int j = 0; j < n; ++j) {
-    const double t = L.tangent[j].norm();
-    if (t > 1e-9) L.tangent[j] /= t;
-  }
-}
-
-/// Forces on the lumped nodes at time fraction `w` of the step [N].
-void lumpedForces(const DynamicSolver3D::Impl& im, const std::vector<Water3>& water, double w, Lumped& L) {
-  const Environment& env = im.problem.environment;
-  const double rho = env.water_density;
-  const int n = L.n;
-  for (int j = 0; j < n; ++j) {
-    L.f[j].setZero();
-    L.drag_rate[j] = 0.0;
-  }
-  for (int j = 0; j + 1 < n; ++j) {
-    const MeshInterval& iv = im.mesh.intervals[static_cast<std::size_t>(j)];
-    if (!(iv.h > 0.0)) {
-      // Junction: the inline bodies' weight and sphere-like drag at the lower node.
-      const Vec3 wv = (1.0 - w) * water[j].w0 + w * water[j].w1;
-      for (std::size_t b : iv.bodies) {
-        const Body& body = im.problem.bodies[b];
-        L.f[j].z() -= body.wet_weight;
-        const Vec3 r = wv - L.v[j];
-        const double area = 0.25 * eq2d::kPi * sqr(body.diameter);
-        L.f[j] += 0.5 * rho * body.isotropicCd() * area * r.norm() * r;
-      }
-      continue;
-    }
-    const Material& m = im.problem.materials[iv.material];
-    const double h = iv.h;
-    // Weight, half to each end.
-    L.f[j].z() -= 0.5 * h * m.wet_weight;
-    L.f[j + 1].z() -= 0.5 * h * m.wet_weight;
-    if (j == im.parted) continue;  // a parted interval carries no force between its nodes
-    const Vec3 d = L.x[j + 1] - L.x[j];
-    const double len = d.norm();
-    const double eps = len / h - 1.0;
-    Vec3 t = len > kShortChord * h ? Vec3(d / len) : Vec3(L.tangent[j]);
-    // Axial force with proportional damping on the strain rate; a line without compression
-    // neither pushes nor pulls back through the damper below zero tension.
-    const double eps_rate = len > kShortChord * h ? t.dot(L.v[j + 1] - L.v[j]) / h : 0.0;
-    const double slope = std::max(m.rawTensionSlope(std::max(eps, 0.0)), 0.0);
-    double T = m.tension(eps) + kAxialDampingRatio * std::sqrt(slope * m.mass) * h * eps_rate;
-    if (!m.compression) T = m.tension(eps) > 0.0 ? std::max(T, 0.0) : 0.0;
-    L.f[j] += T * t;
-    L.f[j + 1] -= T * t;
-    // Drag on the chord at its mid-point velocity relative to the water.
-    const Vec3 wv = 0.5 * ((1.0 - w) * (water[j].w0 + water[j + 1].w0) + w * (water[j].w1 + water[j + 1].w1));
-    const Vec3 vr = 0.5 * (L.v[j] + L.v[j + 1]) - wv;
-    const double vt = vr.dot(t);
-    const Vec3 vn = vr - vt * t;
-    const double stretch = std::sqrt(std::max(1.0 + eps, 0.0));
-    const double vnn = std::sqrt(vn.squaredNorm() + sqr(eq3d::kDragSpeedFloor));
-    const Vec3 drag = -0.5 * rho * m.diameter * h * stretch *
-                      (m.cdn * vnn * vn + eq2d::kPi * m.cdt * std::abs(vt) * vt * t);
-    L.f[j] += 0.5 * drag;
-    L.f[j + 1] += 0.5 * drag;
-    // The drag's rate of change with the node's speed (quadratic drag: twice the force per unit
-    // speed), half to each node: the update treats the drag implicitly with it.
-    const double rate = 0.5 * rho * m.diameter * h * stretch * 2.0 *
-                        std::max(m.cdn * vnn, eq2d::kPi * m.cdt * std::abs(vt));
-    L.drag_rate[j] += 0.25 * rate;
-    L.drag_rate[j + 1] += 0.25 * rate;
-  }
-  // The body at a free lower end: its weight and drag (addBodyLoad, as the box rows' end balance)
-  // on the velocity relative to the water at node 0, taken semi-implicitly as the line's.
-  if (const Body* b = endBody(im)) {
-    const Vec3 wv = (1.0 - w) * water[0].w0 + w * water[0].w1;
-    const Vec3 r = wv - L.v[0];
-    double P[3] = {0.0, 0.0, 0.0};
-    eq3d::addBodyLoad(env, *b, L.tangent[0].data(), r.data(), P);
-    L.f[0] += Vec3(P[0], P[1], P[2]);
-    const double q = 0.5 * rho * 0.25 * eq2d::kPi * sqr(b->diameter);
-    const double cd = b->drag == Body::Drag::Sphere ? b->cd : std::max(b->cdn, b->cdt);
-    L.drag_rate[0] += q * cd * 2.0 * r.norm();
-  }
-  // The seabed (eq. 35-36 with the box rows' contact onset) on each node's tributary length.
-  for (int j = 0; j < n; ++j) {
-    double hj = 0.0;
-    const Material* m = nullptr;
-    for (int k : {j - 1, j}) {
-      if (k < 0 || k + 1 >= n) continue;
-      const MeshInterval& iv = im.mesh.intervals[static_cast<std::size_t>(k)];
-      if (iv.h > 0.0) {
-        hj += 0.5 * iv.h;
-        m = &im.problem.materials[iv.material];
-      }
-    }
-    if (!m) continue;
-    double y[N] = {0.0};
-    y[X] = L.x[j].x();
-    y[eq3d::Y] = L.x[j].y();
-    y[Z] = L.x[j].z();
-    y[U1] = L.v[j].x();
-    y[U2] = L.v[j].y();
-    y[U3] = L.v[j].z();
-    const double Rid[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // local = global: R[6..8] picks V_z
-    const double Fbot = seabedReaction(env, *m, y, Rid);
-    L.f[j].z() += hj * Fbot;
-  }
-}
-
-/// The largest stable sub-step [s]: kCourant times 2 / w_max of the stiffest interval's axial
-/// mode (and of each node's seabed spring).
-double stableSubstep(const DynamicSolver3D::Impl& im, const Lumped& L) {
-  const int n = L.n;
-  double wmax = 0.0;
-  for (int j = 0; j + 1 < n; ++j) {
-    const MeshInterval& iv = im.mesh.intervals[static_cast<std::size_t>(j)];
-    if (!(iv.h > 0.0) || j == im.parted) continue;
-    const Material& m = im.problem.materials[iv.material];
-    const double len = (L.x[j + 1] - L.x[j]).norm();
-    const double eps = len / iv.h - 1.0;
-    // Stiffness of the chord k = EA_t / h (tangent slope, at least the slope at zero strain:
-    // the line may be about to snap) between two masses m h / 2.
-    const double slope = std::max(m.rawTensionSlope(std::max(eps, 0.0)), m.rawTensionSlope(0.0));
-    const double k = slope / iv.h;
-    const double mj = std::min(L.mass[j] + L.body_mass[j], L.mass[j + 1] + L.body_mass[j + 1]);
-    wmax = std::max(wmax, std::sqrt(4.0 * k / std::max(mj, 1e-12)));
-    wmax = std::max(wmax, std::sqrt(im.problem.environment.seabed.stiffness * iv.h / std::max(mj, 1e-12)));
-  }
-  return wmax > 0.0 ? kCourant * 2.0 / wmax : 1e-3;
 }
 
 /// Smallest rotation taking unit vector a to unit vector b, as a quaternion (w, x, y, z).
@@ -357,7 +181,7 @@ void rotationBetween(const Vec3& a, const Vec3& b, double* q) {
 }
 
 /// The box unknowns at the lumped state (see the file comment); Y0 is the state before the step.
-void toBoxState(const DynamicSolver3D::Impl& im, const Lumped& L, const Eigen::VectorXd& Y0, Eigen::VectorXd& Yout) {
+void toBoxState(const DynamicSolver3D::Impl& im, const Line& L, const Eigen::VectorXd& Y0, Eigen::VectorXd& Yout) {
   const int n = L.n;
   Yout = Y0;
   // Strain: the mean of the adjacent chords' strains.
@@ -462,11 +286,11 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   }
   const int n = im.nodes();
   const double t0 = im.t, t1 = im.t + dt;
-  Lumped L;
+  Line L;
   lumpLine(im, L);
   // Water at the nodes' start positions at both ends of the step.
-  std::vector<Water3> water(static_cast<std::size_t>(n));
-  for (const auto& [time, slot] : {std::make_pair(t0, &Water3::w0), std::make_pair(t1, &Water3::w1)}) {
+  std::vector<NodeWater> water(static_cast<std::size_t>(n));
+  for (const auto& [time, slot] : {std::make_pair(t0, &NodeWater::w0), std::make_pair(t1, &NodeWater::w1)}) {
     im.wave_cache.setTime(time);
     for (int j = 0; j < n; ++j) {
       const Water w = im.waterAt(j, L.x[j].x(), L.x[j].y(), L.x[j].z());
@@ -475,74 +299,9 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   }
   // Which ends are held: the top on its path, the anchor where it is (or on its path).
   const Ends ends = endsOf(im);
-  const bool top_held = ends.top_held, anchor_held = ends.low_held;
-  const Vec3 anchor0 = L.x[0];
-  const std::function<TopState(double)>* anchor_path = im.lower_path ? &im.lower_path : nullptr;
-  // Tie junction nodes (h = 0) to the node below them.
-  std::vector<int> tie(static_cast<std::size_t>(n), -1);
-  for (int j = 0; j + 1 < n; ++j)
-    if (!(im.mesh.intervals[static_cast<std::size_t>(j)].h > 0.0)) tie[static_cast<std::size_t>(j) + 1] = j;
-
-  const double hsub = std::min(stableSubstep(im, L), dt);
-  const int steps = std::max(1, static_cast<int>(std::ceil(dt / hsub - 1e-9)));
-  const double h = dt / steps;
-  for (int k = 1; k <= steps; ++k) {
-    const double tk = t0 + k * h;
-    updateTangents(im, L);
-    lumpedForces(im, water, (k - 0.5) / steps, L);
-    // Junctions: the tied node's force and mass go to the node below.
-    for (int j = n - 1; j > 0; --j)
-      if (tie[j] >= 0) {
-        L.f[tie[j]] += L.f[j];
-        L.f[j].setZero();
-      }
-    for (int j = 0; j < n; ++j) {
-      if (tie[j] >= 0) continue;
-      double ms = L.mass[j] + L.body_mass[j], ma = L.added[j];
-      for (int i = j + 1; i < n && tie[i] == j; ++i) {
-        ms += L.mass[i] + L.body_mass[i];
-        ma += L.added[i];
-      }
-      double cd = L.drag_rate[j];
-      for (int i = j + 1; i < n && tie[i] == j; ++i) cd += L.drag_rate[i];
-      const Vec3& t = L.tangent[j];
-      // M = ms I + ma (I - t t^T): along t ms, across ms + ma. The drag linearised about the
-      // current velocity and taken at the end of the sub-step (backward Euler in the drag alone)
-      // adds h cd to both: the update is stable whatever the relative speed.
-      const Vec3 ft = t.dot(L.f[j]) * t;
-      const Vec3 a = ft / (ms + h * cd) + (L.f[j] - ft) / (ms + ma + h * cd);
-      L.v[j] += h * a;
-      L.x[j] += h * L.v[j];
-    }
-    for (int j = 1; j < n; ++j)
-      if (tie[j] >= 0) {
-        L.x[j] = L.x[tie[j]];
-        L.v[j] = L.v[tie[j]];
-      }
-    if (top_held) {
-      const TopState s = im.top(tk);
-      L.x[n - 1] = Vec3(s.x, s.y, s.z);
-      L.v[n - 1] = Vec3(s.vx, s.vy, s.vz);
-    }
-    if (anchor_held) {
-      if (anchor_path) {
-        const TopState s = (*anchor_path)(tk);
-        L.x[0] = Vec3(s.x, s.y, s.z);
-        L.v[0] = Vec3(s.vx, s.vy, s.vz);
-      } else {
-        L.x[0] = anchor0;
-        L.v[0].setZero();
-      }
-    }
-    for (int j = 0; j < n; ++j)
-      if (!L.x[j].allFinite() || !L.v[j].allFinite()) {
-        std::ostringstream os;
-        os << "fallback step from t = " << t0 << " s: node " << j << " left the finite numbers at t = " << tk << " s";
-        rep.message = os.str();
-        return false;
-      }
-  }
-  updateTangents(im, L);
+  const Model3 model{im, ends.top_held, ends.low_held, L.x[0]};
+  long substeps = 0;
+  if (!lumped::advance(setupOf(im), model, water, t0, dt, L, substeps, rep.message)) return false;
   Eigen::VectorXd Ynew;
   toBoxState(im, L, im.Y, Ynew);
   im.Yd_prev = im.Yd;
@@ -558,7 +317,7 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   ++rep.fallback_steps;
   ++im.totals.steps;
   ++im.totals.fallback_steps;
-  im.totals.fallback_substeps += steps;
+  im.totals.fallback_substeps += substeps;
   im.in_fallback = true;
   return true;
 }

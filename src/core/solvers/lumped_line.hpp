@@ -1,0 +1,279 @@
+// The lumped-mass line of the fallback step (docs/method.md "Slack and snap: the fallback step"),
+// shared by the 2-D and 3-D dynamic solvers (dynamics2d_fallback.cpp, dynamics3d_fallback.cpp).
+// Private to src/core/solvers.
+//
+// A base step that the implicit box scheme cannot take, even cut to its smallest size (section
+// 4.3), is taken by an explicit lumped-mass model of the same line over the same interval, and
+// the run goes on from its end state. A line whose top goes wholly slack and is then overrun by
+// its fairlead folds back on itself; the box scheme's unknowns (strain, frame and curvature at
+// the nodes) cannot follow a fold within one step, and Newton fails at every step size. A
+// lumped-mass line has no such limit: each node keeps its own inertia and moves freely while its
+// neighbours carry no tension.
+//
+// The model (the same physics as the box rows, lumped at the nodes):
+//  * masses: the line's mass per unit length times half of each adjacent interval, its added
+//    mass acting across the local tangent only; inline bodies at their junction node;
+//  * axial force of each interval from its chord length, T(eps) of the material (with its
+//    no-compression law where it has one), plus a proportional axial damping of ratio
+//    kAxialDampingRatio of the interval's own axial mode (the box scheme's numerical dissipation
+//    of the mesh mode plays that part in the implicit steps);
+//  * wet weight, normal and tangential quadratic drag on the velocity relative to the water
+//    (current and waves) on each interval's chord, times sqrt(1 + eps) as in the box rows;
+//  * the seabed as in the box rows (the solver's own reaction: spring with its contact onset,
+//    dashpot);
+//  * bending and torsion are left out (chain and rope: EI is negligible next to the axial
+//    forces over a step; the fallback serves lines that fold, not rods);
+//  * the ends as the solver says: held on their paths, or free nodes.
+// Time integration: symplectic Euler on sub-steps of kCourant times the shortest axial wave
+// crossing time of an interval (and of the seabed spring's period), so that the snap's wave is
+// resolved. The water velocity is taken at the nodes' positions at the start of the step, at
+// both ends of the step, linear in time between.
+//
+// The solver supplies a Model with its layout-dependent parts:
+//   double seabed(const Material& m, const Vec3& x, const Vec3& v) const;  // reaction [N/m], +z
+//   Vec3 endBodyLoad(const Body& b, const Vec3& tangent, const Vec3& r) const;  // r: water - node
+//   bool topHeld() const;  void top(double t, Vec3& x, Vec3& v) const;     // the top's path
+//   bool lowHeld() const;  void low(double t, Vec3& x, Vec3& v) const;     // the lower end's
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mooring_dynamics/core/equations/equations2d.hpp"
+#include "mooring_dynamics/core/equations/equations3d.hpp"
+#include "mooring_dynamics/core/equations/mesh.hpp"
+#include "mooring_dynamics/core/model/model.hpp"
+
+namespace mooring_dynamics {
+namespace core {
+namespace lumped {
+
+using Vec3 = Eigen::Vector3d;
+
+/// Axial damping ratio of each interval's own axial mode (the highest mode of the lumped line,
+/// ~ 2 sqrt(EA/m)/h): proportional damping, so a mode of frequency w gets kAxialDampingRatio
+/// w / w_max, which leaves the line's physical modes (w << w_max) all but undamped.
+constexpr double kAxialDampingRatio = 0.5;
+/// Sub-step as a fraction of the stability limit of symplectic Euler (2 / w_max).
+constexpr double kCourant = 0.4;
+/// A chord shorter than this fraction of its interval has no direction of its own [-].
+constexpr double kShortChord = 1e-6;
+
+// When the solvers go to the fallback and leave it (dynamics2d.cpp, dynamics3d.cpp):
+/// A node whose strain is below -kFoldedStrain (its intervals 0.1 % shorter than unstretched:
+/// chain heaped or folded, carrying no tension) marks the line as still folded after a fallback
+/// step. On the spread mooring at Hs 4 (30 s, 317 implicit tries right after a fallback step)
+/// 297 of the 302 tries from a folded state failed, and 11 of the 15 from an unfolded one
+/// converged; the five folded ones that converged were within -1.1e-4 of zero.
+constexpr double kFoldedStrain = 1e-3;
+/// For at most this long [s] of simulated time in a row base steps go to the fallback without an
+/// implicit try (whatever the steps' length: in lockstep every sample ends a step): a
+/// heap of chain lying on the seabed can keep a line "folded" long after the implicit step could
+/// take it again.
+constexpr double kMaxSkippedTime = 1.0;
+/// A converged implicit step whose top node is farther than this fraction of the top interval
+/// from the top's path is refused (topOffItsPath). With the top interval folded the box
+/// scheme's coordinates there are all but free: on the spread mooring at Hs 6 with 17.5 m
+/// intervals the top node wandered up to 13.8 m from its fairlead (median 0.35 m), and its
+/// strain rang from -6 % to +0.7 % in 0.01 s steps (3.7 MN spikes with the fairlead moving at
+/// 0.5 m/s). At 3.5 m intervals the top stayed within 0.15 m (4 %) through 150 s of Hs 6.
+constexpr double kTopOffPath = 0.05;
+
+/// The line as lumped masses at the nodes (world frame, REP 103; 2-D lines in the x-z plane).
+struct Line {
+  int n = 0;
+  std::vector<Vec3> x, v, f;
+  std::vector<double> drag_rate;  ///< d|drag| / d|v| at the node [N s/m] (semi-implicit drag)
+  std::vector<double> mass;       ///< structural mass [kg]
+  std::vector<double> added;      ///< added mass across the tangent [kg] (line)
+  std::vector<double> body_mass;  ///< inline bodies' mass plus added mass [kg] (isotropic)
+  std::vector<Vec3> tangent;      ///< unit tangent at the node (mean of the chords)
+};
+
+/// Water velocity at a node at the start and the end of the step [m/s].
+struct NodeWater {
+  Vec3 w0, w1;
+};
+
+/// What the lumped model needs of the solver's line besides the Model: its problem, mesh (h = 0
+/// intervals are junctions), the parted interval (-1: none) and the body at a free lower end.
+struct Setup {
+  const Problem* problem = nullptr;
+  const Mesh* mesh = nullptr;
+  int parted = -1;
+  const Body* end_body = nullptr;
+};
+
+/// Masses of the nodes of `L` (L.x, L.v are the caller's: set them after this).
+void lumpMasses(const Setup& s, Line& L);
+/// Unit tangents at the nodes: the mean of the adjacent chords' directions (one-sided at the
+/// ends and junctions).
+void updateTangents(const Setup& s, Line& L);
+/// The largest stable sub-step [s]: kCourant times 2 / w_max of the stiffest interval's axial
+/// mode (and of each node's seabed spring).
+double stableSubstep(const Setup& s, const Line& L);
+/// Strain of the chord of interval j [-].
+inline double chordStrain(const Line& L, const MeshInterval& iv, int j) {
+  return (L.x[static_cast<std::size_t>(j) + 1] - L.x[static_cast<std::size_t>(j)]).norm() / iv.h - 1.0;
+}
+
+/// Forces on the lumped nodes at time fraction `w` of the step [N].
+template <class Model>
+void forces(const Setup& s, const Model& model, const std::vector<NodeWater>& water, double w, Line& L) {
+  const Problem& p = *s.problem;
+  const Environment& env = p.environment;
+  const double rho = env.water_density;
+  const int n = L.n;
+  auto sqr = [](double a) { return a * a; };
+  for (int j = 0; j < n; ++j) {
+    L.f[j].setZero();
+    L.drag_rate[j] = 0.0;
+  }
+  for (int j = 0; j + 1 < n; ++j) {
+    const MeshInterval& iv = s.mesh->intervals[static_cast<std::size_t>(j)];
+    if (!(iv.h > 0.0)) {
+      // Junction: the inline bodies' weight and sphere-like drag at the lower node.
+      const Vec3 wv = (1.0 - w) * water[j].w0 + w * water[j].w1;
+      for (std::size_t b : iv.bodies) {
+        const Body& body = p.bodies[b];
+        L.f[j].z() -= body.wet_weight;
+        const Vec3 r = wv - L.v[j];
+        const double area = 0.25 * eq2d::kPi * sqr(body.diameter);
+        L.f[j] += 0.5 * rho * body.isotropicCd() * area * r.norm() * r;
+      }
+      continue;
+    }
+    const Material& m = p.materials[iv.material];
+    const double h = iv.h;
+    // Weight, half to each end.
+    L.f[j].z() -= 0.5 * h * m.wet_weight;
+    L.f[j + 1].z() -= 0.5 * h * m.wet_weight;
+    if (j == s.parted) continue;  // a parted interval carries no force between its nodes
+    const Vec3 d = L.x[j + 1] - L.x[j];
+    const double len = d.norm();
+    const double eps = len / h - 1.0;
+    Vec3 t = len > kShortChord * h ? Vec3(d / len) : Vec3(L.tangent[j]);
+    // Axial force with proportional damping on the strain rate; a line without compression
+    // neither pushes nor pulls back through the damper below zero tension.
+    const double eps_rate = len > kShortChord * h ? t.dot(L.v[j + 1] - L.v[j]) / h : 0.0;
+    const double slope = std::max(m.rawTensionSlope(std::max(eps, 0.0)), 0.0);
+    double T = m.tension(eps) + kAxialDampingRatio * std::sqrt(slope * m.mass) * h * eps_rate;
+    if (!m.compression) T = m.tension(eps) > 0.0 ? std::max(T, 0.0) : 0.0;
+    L.f[j] += T * t;
+    L.f[j + 1] -= T * t;
+    // Drag on the chord at its mid-point velocity relative to the water.
+    const Vec3 wv = 0.5 * ((1.0 - w) * (water[j].w0 + water[j + 1].w0) + w * (water[j].w1 + water[j + 1].w1));
+    const Vec3 vr = 0.5 * (L.v[j] + L.v[j + 1]) - wv;
+    const double vt = vr.dot(t);
+    const Vec3 vn = vr - vt * t;
+    const double stretch = std::sqrt(std::max(1.0 + eps, 0.0));
+    const double vnn = std::sqrt(vn.squaredNorm() + sqr(eq3d::kDragSpeedFloor));
+    const Vec3 drag = -0.5 * rho * m.diameter * h * stretch *
+                      (m.cdn * vnn * vn + eq2d::kPi * m.cdt * std::abs(vt) * vt * t);
+    L.f[j] += 0.5 * drag;
+    L.f[j + 1] += 0.5 * drag;
+    // The drag's rate of change with the node's speed (quadratic drag: twice the force per unit
+    // speed), half to each node: the update treats the drag implicitly with it.
+    const double rate = 0.5 * rho * m.diameter * h * stretch * 2.0 *
+                        std::max(m.cdn * vnn, eq2d::kPi * m.cdt * std::abs(vt));
+    L.drag_rate[j] += 0.25 * rate;
+    L.drag_rate[j + 1] += 0.25 * rate;
+  }
+  // The body at a free lower end: its weight and drag (as the box rows' end balance) on the
+  // velocity relative to the water at node 0, taken semi-implicitly as the line's.
+  if (const Body* b = s.end_body) {
+    const Vec3 wv = (1.0 - w) * water[0].w0 + w * water[0].w1;
+    const Vec3 r = wv - L.v[0];
+    L.f[0] += model.endBodyLoad(*b, L.tangent[0], r);
+    const double q = 0.5 * rho * 0.25 * eq2d::kPi * sqr(b->diameter);
+    const double cd = b->drag == Body::Drag::Sphere ? b->cd : std::max(b->cdn, b->cdt);
+    L.drag_rate[0] += q * cd * 2.0 * r.norm();
+  }
+  // The seabed (eq. 35-36 with the box rows' contact onset) on each node's tributary length.
+  for (int j = 0; j < n; ++j) {
+    double hj = 0.0;
+    const Material* m = nullptr;
+    for (int k : {j - 1, j}) {
+      if (k < 0 || k + 1 >= n) continue;
+      const MeshInterval& iv = s.mesh->intervals[static_cast<std::size_t>(k)];
+      if (iv.h > 0.0) {
+        hj += 0.5 * iv.h;
+        m = &p.materials[iv.material];
+      }
+    }
+    if (!m) continue;
+    const double Fbot = model.seabed(*m, L.x[j], L.v[j]);
+    L.f[j].z() += hj * Fbot;
+  }
+}
+
+/// Advance `L` from t0 over dt in explicit sub-steps (see the file comment); `substeps` gets
+/// their number. False, with why in `message`, when a node leaves the finite numbers.
+template <class Model>
+bool advance(const Setup& s, const Model& model, const std::vector<NodeWater>& water, double t0, double dt, Line& L,
+             long& substeps, std::string& message) {
+  const int n = L.n;
+  // Tie junction nodes (h = 0) to the node below them.
+  std::vector<int> tie(static_cast<std::size_t>(n), -1);
+  for (int j = 0; j + 1 < n; ++j)
+    if (!(s.mesh->intervals[static_cast<std::size_t>(j)].h > 0.0)) tie[static_cast<std::size_t>(j) + 1] = j;
+  const bool top_held = model.topHeld(), low_held = model.lowHeld();
+
+  const double hsub = std::min(stableSubstep(s, L), dt);
+  const int steps = std::max(1, static_cast<int>(std::ceil(dt / hsub - 1e-9)));
+  const double h = dt / steps;
+  for (int k = 1; k <= steps; ++k) {
+    const double tk = t0 + k * h;
+    updateTangents(s, L);
+    forces(s, model, water, (k - 0.5) / steps, L);
+    // Junctions: the tied node's force and mass go to the node below.
+    for (int j = n - 1; j > 0; --j)
+      if (tie[j] >= 0) {
+        L.f[tie[j]] += L.f[j];
+        L.f[j].setZero();
+      }
+    for (int j = 0; j < n; ++j) {
+      if (tie[j] >= 0) continue;
+      double ms = L.mass[j] + L.body_mass[j], ma = L.added[j];
+      for (int i = j + 1; i < n && tie[i] == j; ++i) {
+        ms += L.mass[i] + L.body_mass[i];
+        ma += L.added[i];
+      }
+      double cd = L.drag_rate[j];
+      for (int i = j + 1; i < n && tie[i] == j; ++i) cd += L.drag_rate[i];
+      const Vec3& t = L.tangent[j];
+      // M = ms I + ma (I - t t^T): along t ms, across ms + ma. The drag linearised about the
+      // current velocity and taken at the end of the sub-step (backward Euler in the drag alone)
+      // adds h cd to both: the update is stable whatever the relative speed.
+      const Vec3 ft = t.dot(L.f[j]) * t;
+      const Vec3 a = ft / (ms + h * cd) + (L.f[j] - ft) / (ms + ma + h * cd);
+      L.v[j] += h * a;
+      L.x[j] += h * L.v[j];
+    }
+    for (int j = 1; j < n; ++j)
+      if (tie[j] >= 0) {
+        L.x[j] = L.x[tie[j]];
+        L.v[j] = L.v[tie[j]];
+      }
+    if (top_held) model.top(tk, L.x[n - 1], L.v[n - 1]);
+    if (low_held) model.low(tk, L.x[0], L.v[0]);
+    for (int j = 0; j < n; ++j)
+      if (!L.x[j].allFinite() || !L.v[j].allFinite()) {
+        std::ostringstream os;
+        os << "fallback step from t = " << t0 << " s: node " << j << " left the finite numbers at t = " << tk << " s";
+        message = os.str();
+        return false;
+      }
+  }
+  updateTangents(s, L);
+  substeps = steps;
+  return true;
+}
+
+}  // namespace lumped
+}  // namespace core
+}  // namespace mooring_dynamics
