@@ -466,9 +466,10 @@ TEST_F(CliTest, DynamicBadKeyExitsThreeAndNamesKey) {
 }
 
 TEST_F(CliTest, DynamicRunThatStopsExitsFourAndWritesWhatItHas) {
-  // One Newton iteration per step and no step cutting: the first step cannot converge.
+  // One Newton iteration per step, no step cutting and no fallback step: the first step cannot
+  // converge.
   std::string text = kDynamicProblem;
-  text += "  max_iterations: 1\n  max_cut_levels: 0\n  tolerance: 1.0e-12\n";
+  text += "  max_iterations: 1\n  max_cut_levels: 0\n  tolerance: 1.0e-12\n  fallback: false\n";
   const fs::path out = dir_ / "out";
   const RunResult r = run({"dynamic", file("stop.yaml", text).string(), "--out", out.string()});
   EXPECT_EQ(r.code, 4) << r.out << r.err;

@@ -257,7 +257,8 @@ TEST_F(CliSweep, AKilledSweepResumesAndSkipsWhatWasFinished) {
 }
 
 TEST_F(CliSweep, AFailedCaseIsRecordedAndTheOthersGoOn) {
-  // Three cases of the small catenary, the middle one with a Newton tolerance no step can meet.
+  // Three cases of the small catenary, the middle one with a Newton tolerance no step can meet
+  // and no fallback step (which would otherwise take every step the implicit scheme cannot).
   writeText(root_ / "fail.yaml",
             "base: " + kData + "small_catenary.yaml\n"
             "set: {dynamics.duration: 0.5, dynamics.dt: 0.1,\n"
@@ -266,7 +267,8 @@ TEST_F(CliSweep, AFailedCaseIsRecordedAndTheOthersGoOn) {
             "  - name: solver\n"
             "    values:\n"
             "      - {label: a}\n"
-            "      - {label: impossible, set: {dynamics.tolerance: 1.0e-300, dynamics.max_cut_levels: 0, dynamics.max_iterations: 2}}\n"
+            "      - {label: impossible, set: {dynamics.tolerance: 1.0e-300, dynamics.max_cut_levels: 0, dynamics.max_iterations: 2,\n"
+            "                                     dynamics.fallback: false}}\n"
             "      - {label: b, set: {dynamics.dt: 0.05}}\n");
   const fs::path dir = root_ / "fail";
   const Result r = cableSim("sweep " + q((root_ / "fail.yaml").string()) + " --out " + q(dir.string()) + " --jobs 2 --no-progress",

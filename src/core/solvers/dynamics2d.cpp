@@ -1,4 +1,5 @@
-#include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "dynamics2d_impl.hpp"
+#include "lumped_line.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -23,8 +24,6 @@
 namespace mooring_dynamics {
 namespace core {
 
-using namespace eq2dyn;
-
 namespace {
 
 using AD16 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2 * N, 1>>;
@@ -45,135 +44,6 @@ TopState topState(const TopInput& in) {
 }
 
 }  // namespace
-
-// ------------------------------------------------------------------------------------------------
-
-struct DynamicSolver2D::Impl {
-  Problem problem;
-  Mesh mesh;
-  WaveField waves;
-  mutable WaveVelocityCache wave_cache;  ///< wave kinematics at the nodes (cos, sin reused)
-  CurrentProfile current;                ///< problem.environment.current, components precomputed
-  /// Workspace of DynamicStepSystem::evaluate: each node's terms (nodeStepTerms), kept between
-  /// steps so that a step does not allocate them.
-  mutable std::vector<NodeTerms> node_terms;
-  GeneralizedAlpha ga;
-  DynamicOptions opt;
-  std::function<TopInput(double)> top;
-  StaticResult statics;
-  /// The anchor and the top (end_conditions.hpp): their rows at nodes 0 and n - 1.
-  std::unique_ptr<EndCondition2D> lower, upper;
-
-  // Accepted state at time t.
-  double t = 0.0;
-  Eigen::VectorXd Y, Yd;
-  Eigen::VectorXd Yd_prev;      ///< rate before the last accepted step (second-order predictor)
-  double last_dt = 0.0;         ///< size of the last accepted step [s]
-  std::vector<Water> water;     ///< water velocity at each node at time t
-  Eigen::VectorXd S;            ///< spatial rows of each interval at time t (8 per interval)
-  std::vector<double> cos_phi, sin_phi;  ///< of each node's inclination at time t
-
-  double chi[N];
-  Totals totals;
-  BandedMatrix newton_matrix;  ///< Newton matrix reused by every step (solveNewton workspace)
-  /// The second thread (dynamics.threads = 2; null with one): assembles and eliminates the
-  /// upper half of the line (inHalves, BandedMatrix::setParallel).
-  std::unique_ptr<ForkJoin> fork;
-  double factored_dt = 0.0;    ///< step size the factorization in newton_matrix belongs to [s]
-
-  int nodes() const { return static_cast<int>(mesh.nodes.size()); }
-
-  /// core::inHalves on this solver's fork (the second thread, if any).
-  template <class F>
-  void inHalves(int m, int end, const F& f) const {
-    core::inHalves(fork.get(), m, end, f);
-  }
-  /// Where the threads are expected to meet in the nodes' water values (set from the static
-  /// shape, balancedWaterSplit): sharedHalves starts from it and moves the meeting with the
-  /// threads' speed, so that a node's wave references stay with one thread but near it.
-  int water_split = 0;
-  /// Where the threads are expected to meet in the interval rows (evaluate; set from the mesh,
-  /// balancedSplit with kJunctionWork; sharedHalves starts from it): a junction's rows
-  /// (automatic differentiation) cost several intervals', and junctions gather where bodies sit,
-  /// near the top of a mooring. The rows between the meeting and the Newton matrix's meeting
-  /// node are assembled by one thread and eliminated by the other (1 KB an interval). No result
-  /// depends on it: every interval's rows are computed alike on either thread.
-  int interval_split = 0;
-  const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }
-
-  /// Water at node j, at (x, z) and the time last given to wave_cache.setTime.
-  Water waterAt(int j, double x, double z) const {
-    Water w;
-    double ux, uy;
-    w.z = z;
-    if (current.size() > 1) {
-      // Slope of the piecewise-linear profile (exact inside a table interval), as in statics.
-      constexpr double kDz = 1e-6;  // [m]
-      double up, um;
-      current.atAndAround(z, kDz, ux, uy, up, um);
-      w.dwx_dz = (up - um) / (2.0 * kDz);
-    } else {
-      current.at(z, ux, uy);
-    }
-    w.wx = ux;
-    if (!wave_cache.empty() && z <= 0.0) {
-      double vx, vz;
-      wave_cache.velocity(static_cast<std::size_t>(j), x, z, vx, vz);  // WaveField::velocity(x, 0, z, t)
-      w.wx += vx;
-      w.wz += vz;
-    }
-    return w;
-  }
-
-  void waterField(const Eigen::VectorXd& y, double time, std::vector<Water>& out) const {
-    out.resize(static_cast<std::size_t>(nodes()));
-    wave_cache.setTime(time);
-    for (int j = 0; j < nodes(); ++j) out[static_cast<std::size_t>(j)] = waterAt(j, y[N * j + X], y[N * j + Z]);
-  }
-
-  /// Spatial rows of every interval at the accepted state y (double), and cos, sin of every
-  /// node's inclination there (the next step's previous level). In the halves of the Newton
-  /// iteration (the angles at the meeting node, the intervals at interval_split), on both
-  /// threads when there are two.
-  void spatialRows(const Eigen::VectorXd& y, const std::vector<Water>& w, Eigen::VectorXd& out, std::vector<double>& c,
-                   std::vector<double>& s) const {
-    const int n = nodes();
-    out.setZero(N * (n - 1));
-    c.resize(static_cast<std::size_t>(n));
-    s.resize(static_cast<std::size_t>(n));
-    auto angles = [&](int j0, int j1) {
-      for (int j = j0; j < j1; ++j) sinCos(y[N * j + PHI], s[static_cast<std::size_t>(j)], c[static_cast<std::size_t>(j)]);
-    };
-    // Intervals [j0, j1), each node's load once for the intervals of one material it belongs to
-    // (a half's first node computes its own: the same value as the other half's last).
-    auto intervals = [&](int j0, int j1) {
-      double f1b = 0.0, f2b = 0.0;
-      long load_material = -1;  // that of the load of node j kept from the interval before
-      for (int j = j0; j < j1; ++j) {
-        const MeshInterval& iv = mesh.intervals[static_cast<std::size_t>(j)];
-        const std::size_t a = static_cast<std::size_t>(j), b = a + 1;
-        const double* ya = y.data() + N * j;
-        const double* yb = ya + N;
-        double* r = out.data() + N * j;
-        if (iv.h > 0.0) {
-          const Material& m = problem.materials[iv.material];
-          const NodeView na{ya, c[a], s[a], &w[a]}, nb{yb, c[b], s[b], &w[b]};
-          double f1a = f1b, f2a = f2b;
-          if (load_material != static_cast<long>(iv.material)) nodeLoadValue(problem.environment, m, na, f1a, f2a);
-          nodeLoadValue(problem.environment, m, nb, f1b, f2b);
-          load_material = static_cast<long>(iv.material);
-          intervalSpatialRows(m, iv.h, na, nb, f1a, f2a, f1b, f2b, r);
-        } else {
-          junctionForces(problem, iv, mat(j), mat(j + 1), ya, yb, w[a], r);
-          load_material = -1;
-        }
-      }
-    };
-    const int m = BandedMatrix::meetingNode(n);
-    inHalves(m, n, angles);  // (the intervals need both halves' angles)
-    inHalves(m == 0 ? 0 : interval_split, n - 1, intervals);
-  }
-};
 
 // --- One time step as a Newton system ----------------------------------------------------------
 //
@@ -572,6 +442,12 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
   im.opt = problem.dynamics;
   im.ga = problem.dynamics.scheme;
   solveStart(im, problem);
+  if (im.opt.fallback_after_cuts == DynamicOptions::kFallbackAfterCutsAuto) {
+    // (DynamicOptions::fallback_after_cuts) 1 where the line can go slack and snap, as in 3-D.
+    bool slack_law = false;
+    for (int j = 0; j < im.nodes(); ++j) slack_law = slack_law || !im.mat(j).compression;
+    im.opt.fallback_after_cuts = slack_law ? 1 : 4;
+  }
   im.lower = makeLowerEnd2D(im.problem);
   im.upper = makeUpperEnd2D(im.problem, im.mat(im.nodes() - 1));
   if (problem.environment.waves.type != WaveSpec::Type::None)
@@ -654,7 +530,9 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   Eigen::VectorXd Y = im.Y + dt * im.Yd;
   if (im.opt.jacobian_reuse && sameStepSize(im.last_dt, dt) && im.Yd_prev.size() == im.Yd.size())
     Y += 0.5 * dt * (im.Yd - im.Yd_prev);
-  const NewtonOptions no = stepNewtonOptions(im.opt);
+  NewtonOptions no = stepNewtonOptions(im.opt);
+  // Back from a fallback step: a few iterations say whether the implicit step holds again.
+  if (im.in_fallback) no.max_iterations = std::min(no.max_iterations, lumped::kRetryIterations);
   // A kept factorization (modified Newton) belongs to one step size.
   if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
   NewtonWork work;
@@ -664,9 +542,18 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   im.totals.newton_iterations += s.iterations;
   im.totals.jacobians += work.assemblies;
   if (!s.converged) {
+    if (im.in_fallback) ++im.totals.fallback_retries;
     im.newton_matrix.setZero();  // factored at an iterate that did not converge
     std::ostringstream os;
     os << "t = " << t_new << " s (dt = " << dt << " s): " << s.message;
+    rep.message = os.str();
+    return false;
+  }
+  if (const std::string off = topOffItsPath(im, Y, t_new); !off.empty()) {
+    ++im.totals.top_off_path;
+    im.newton_matrix.setZero();
+    std::ostringstream os;
+    os << "t = " << t_new << " s (dt = " << dt << " s): " << off;
     rep.message = os.str();
     return false;
   }
@@ -679,6 +566,7 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   im.t = t_new;
   im.water = sys.water();
   im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
+  im.in_fallback = false;
   ++rep.steps;
   ++im.totals.steps;
   rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
@@ -689,10 +577,28 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
 
 StepReport DynamicSolver2D::advanceTo(double t_end) {
   Impl& im = *impl_;
-  // Base steps with the adaptive cutting of section 4.3 (dynamic_run.hpp).
+  // Base steps with the adaptive cutting of section 4.3 (dynamic_run.hpp). The fallback
+  // (dynamics2d_fallback.cpp) takes what is left of a base step that fails at
+  // dynamics.fallback_after_cuts cuts, as in 3-D: right after a fallback step a failed base step
+  // goes to it at once, and while the line is still folded (stayInFallback) without an implicit try.
+  struct Fallback {
+    Impl* im;
+    int levels(int max_levels) const {
+      if (!im->opt.fallback || !fallbackUnavailable(*im).empty()) return max_levels;
+      if (stayInFallback(*im)) return -1;
+      return im->in_fallback ? 0 : std::min(max_levels, im->opt.fallback_after_cuts);
+    }
+    bool operator()(double dt, StepReport& rep) const {
+      if (!im->opt.fallback) return false;
+      const bool skipped = stayInFallback(*im);
+      if (!fallbackStep(*im, dt, rep)) return false;
+      im->fallback_skipped_time = skipped ? im->fallback_skipped_time + dt : 0.0;
+      return true;
+    }
+  };
   return advanceWithCuts(
       im.t, im.opt.dt, im.opt.max_cut_levels, t_end, [&im](double dt, StepReport& rep) { return tryStep(im, dt, rep); },
-      [&im]() { ++im.totals.cuts; });
+      [&im]() { ++im.totals.cuts; }, Fallback{&im});
 }
 
 double DynamicSolver2D::jacobianFiniteDifferenceError(double dt) const {

@@ -1,5 +1,6 @@
 #include "mooring_dynamics/core/solvers/dynamics3d.hpp"
 #include "dynamics3d_impl.hpp"
+#include "lumped_line.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -525,9 +526,6 @@ void addReport(StepReport& total, const StepReport& rep) {
   total.message = rep.message;
 }
 
-/// Newton iterations of the first implicit step after a fallback step: a line that is taut again
-/// converges in a handful (the state is the lumped line's, close to the box solution).
-constexpr int kRetryIterations = 10;
 
 /// One attempted step of size dt from the accepted state; on success the state advances.
 bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
@@ -547,7 +545,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
   NewtonOptions no = stepNewtonOptions(im.opt);
   // Back from a fallback step: a few iterations say whether the implicit step holds again.
-  if (im.in_fallback) no.max_iterations = std::min(no.max_iterations, kRetryIterations);
+  if (im.in_fallback) no.max_iterations = std::min(no.max_iterations, lumped::kRetryIterations);
   NewtonWork work;
   const SolverSummary s = solveNewton(sys, Yv, no, &im.newton_matrix, &work);
   im.factored_dt = dt;
@@ -662,6 +660,7 @@ struct DynamicSolver3D::Saved {
   double last_dt = 0.0;
   bool in_fallback = false;
   double fallback_skipped_time = 0.0;
+  std::vector<double> fallback_ref;
   Totals totals;
   WinchSaved winch;  ///< the mesh a winch changes, its program and length
 };
@@ -685,6 +684,7 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->last_dt = im.last_dt;
   s->in_fallback = im.in_fallback;
   s->fallback_skipped_time = im.fallback_skipped_time;
+  s->fallback_ref = im.fallback_ref;
   s->totals = im.totals;
   s->winch = winchSave(im);
   return s;
@@ -711,6 +711,7 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.last_dt = s.last_dt;
   im.in_fallback = s.in_fallback;
   im.fallback_skipped_time = s.fallback_skipped_time;
+  im.fallback_ref = s.fallback_ref;
   im.totals = s.totals;
   winchRestore(im, s.winch);
   // A kept factorization (modified Newton) stays: it is still a Jacobian of this step size.

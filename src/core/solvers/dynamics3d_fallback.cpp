@@ -30,8 +30,6 @@ namespace core {
 
 namespace {
 
-using lumped::kFoldedStrain;
-using lumped::kMaxSkippedTime;
 using lumped::kTopOffPath;
 
 using Vec3 = Eigen::Vector3d;
@@ -157,6 +155,17 @@ void lumpLine(const DynamicSolver3D::Impl& im, Line& L) {
     globalVelocity(y, V);
     L.v[j] = Vec3(V[0], V[1], V[2]);
   }
+  if (im.in_fallback && im.fallback_ref.size() == L.ref.size()) {
+    L.ref = im.fallback_ref;
+    return;
+  }
+  std::vector<Vec3> tangent(static_cast<std::size_t>(L.n));
+  for (int j = 0; j < L.n; ++j) {
+    double R[9];
+    quat::matrix(im.Y.data() + N * j + Q0, R);
+    tangent[static_cast<std::size_t>(j)] = Vec3(R[0], R[3], R[6]).normalized();
+  }
+  lumped::setReferenceLengths(setupOf(im), tangent, L);
 }
 
 /// Smallest rotation taking unit vector a to unit vector b, as a quaternion (w, x, y, z).
@@ -189,7 +198,7 @@ void toBoxState(const DynamicSolver3D::Impl& im, const Line& L, const Eigen::Vec
   for (int j = 0; j + 1 < n; ++j) {
     const MeshInterval& iv = im.mesh.intervals[static_cast<std::size_t>(j)];
     if (!(iv.h > 0.0) || j == im.parted) continue;
-    const double e = (L.x[j + 1] - L.x[j]).norm() / iv.h - 1.0;
+    const double e = lumped::chordStrain(L, j);
     for (int k : {j, j + 1}) {
       eps_sum[k] += e;
       eps_cnt[k] += 1.0;
@@ -313,22 +322,12 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.spatialRows(im.Y, im.water, im.S);
   im.acceptEndLevels(im.Y, im.water, im.t);
   rowsChanged(im);
-  ++rep.steps;
-  ++rep.fallback_steps;
-  ++im.totals.steps;
-  ++im.totals.fallback_steps;
-  im.totals.fallback_substeps += substeps;
-  im.in_fallback = true;
+  lumped::countFallbackStep(im, rep, substeps, L);
   return true;
 }
 
 bool stayInFallback(const DynamicSolver3D::Impl& im) {
-  if (!im.in_fallback || im.fallback_skipped_time >= kMaxSkippedTime * (1.0 - 1e-9)) return false;  // (sums of dt)
-  // Folded: a node of a material without compression (chain, rope: negative strain is slack, not
-  // a compressed rod) shorter than unstretched by more than kFoldedStrain.
-  for (int j = 0; j < im.nodes(); ++j)
-    if (!im.mat(j).compression && im.Y[N * j + EPS] < -kFoldedStrain) return true;
-  return false;
+  return lumped::stayFolded(im, N, EPS);
 }
 
 }  // namespace core

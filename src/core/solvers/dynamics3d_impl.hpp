@@ -101,6 +101,9 @@ struct DynamicSolver3D::Impl {
   /// Time [s] of the fallback steps in a row taken without trying the implicit step first
   /// (stayInFallback).
   double fallback_skipped_time = 0.0;
+  /// The reference lengths of the last fallback step's intervals (lumped::Line::ref), which the
+  /// next one keeps while the line stays in the fallback.
+  std::vector<double> fallback_ref;
 
   int nodes() const { return static_cast<int>(mesh.nodes.size()); }
   const Material& mat(int j) const { return problem.materials[mesh.nodes[static_cast<std::size_t>(j)].material]; }

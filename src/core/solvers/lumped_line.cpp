@@ -16,6 +16,7 @@ void lumpMasses(const Setup& s, Line& L) {
   L.added.assign(n, 0.0);
   L.body_mass.assign(n, 0.0);
   L.tangent.assign(n, Vec3::Zero());
+  L.ref.assign(n > 0 ? n - 1 : 0, 0.0);
   for (int j = 0; j + 1 < n; ++j) {
     const MeshInterval& iv = s.mesh->intervals[static_cast<std::size_t>(j)];
     if (iv.h > 0.0) {
@@ -32,6 +33,15 @@ void lumpMasses(const Setup& s, Line& L) {
     }
   }
   if (const Body* b = s.end_body) L.body_mass[0] += b->mass + b->added_mass;
+}
+
+void setReferenceLengths(const Setup& s, const std::vector<Vec3>& tangent, Line& L) {
+  for (int j = 0; j + 1 < L.n; ++j) {
+    const MeshInterval& iv = s.mesh->intervals[static_cast<std::size_t>(j)];
+    const std::size_t a = static_cast<std::size_t>(j);
+    L.ref[a] = iv.h;
+    if (iv.h > 0.0 && j != s.parted) L.ref[a] = iv.h * chordFactor(tangent[a], tangent[a + 1]);
+  }
 }
 
 void updateTangents(const Setup& s, Line& L) {
@@ -60,11 +70,11 @@ double stableSubstep(const Setup& s, const Line& L) {
     if (!(iv.h > 0.0) || j == s.parted) continue;
     const Material& m = s.problem->materials[iv.material];
     const double len = (L.x[j + 1] - L.x[j]).norm();
-    const double eps = len / iv.h - 1.0;
+    const double eps = len / L.ref[j] - 1.0;
     // Stiffness of the chord k = EA_t / h (tangent slope, at least the slope at zero strain:
     // the line may be about to snap) between two masses m h / 2.
     const double slope = std::max(m.rawTensionSlope(std::max(eps, 0.0)), m.rawTensionSlope(0.0));
-    const double k = slope / iv.h;
+    const double k = slope / L.ref[j];
     const double mj = std::min(L.mass[j] + L.body_mass[j], L.mass[j + 1] + L.body_mass[j + 1]);
     wmax = std::max(wmax, std::sqrt(4.0 * k / std::max(mj, 1e-12)));
     wmax = std::max(wmax, std::sqrt(s.problem->environment.seabed.stiffness * iv.h / std::max(mj, 1e-12)));

@@ -82,10 +82,32 @@ constexpr double kMaxSkippedTime = 1.0;
 /// strain rang from -6 % to +0.7 % in 0.01 s steps (3.7 MN spikes with the fairlead moving at
 /// 0.5 m/s). At 3.5 m intervals the top stayed within 0.15 m (4 %) through 150 s of Hs 6.
 constexpr double kTopOffPath = 0.05;
+/// Newton iterations of the first implicit step after a fallback step: a line that is taut again
+/// converges in a handful (the state is the lumped line's, close to the box solution).
+constexpr int kRetryIterations = 10;
+
+/// The box scheme's coordinate rows (eq. 42) put two nodes h/2 |p_a t_a + p_b t_b| apart:
+/// h (1 + eps) cos(dphi / 2) where the line turns by dphi between the nodes' tangents, shorter
+/// than h (1 + eps). A lumped chord measured against h would read the difference as a strain
+/// deficit of dphi^2 / 8, a tension error of EA dphi^2 / 8: a wire of EA = 1e8 N at 10 kN on
+/// 11.1 m intervals, turning by up to 0.29 rad over one next to its anchor, went from 4 kN at
+/// the anchor to 122 kN in the first fallback step, and a run taken wholly by the fallback swung
+/// between -43 and +82 kN about its static 10 kN. So the lumped chord of each interval is
+/// measured against h cos(dphi / 2) (chordFactor) of the box state's tangents where a fallback
+/// step follows an implicit one (setReferenceLengths), and the box strain it hands back is the
+/// chord's against that length. Fallback steps in a row keep the lengths: re-derived from the
+/// lumped line's own tangents at every step they would pump its transverse vibration into its
+/// tension (the same wire held still swung by 3.8 kN rms instead of 33 N).
+/// Where the turn is sharper than a cos(dphi / 2) of 1 - kMaxChordCorrection (0.9 rad over one
+/// interval) the interval is folded or a slack bend the mesh does not resolve: it keeps h.
+constexpr double kMaxChordCorrection = 0.1;
 
 /// The line as lumped masses at the nodes (world frame, REP 103; 2-D lines in the x-z plane).
 struct Line {
   int n = 0;
+  /// Unstretched length each interval's chord is measured against [m] (setReferenceLengths;
+  /// 0 for a junction).
+  std::vector<double> ref;
   std::vector<Vec3> x, v, f;
   std::vector<double> drag_rate;  ///< d|drag| / d|v| at the node [N s/m] (semi-implicit drag)
   std::vector<double> mass;       ///< structural mass [kg]
@@ -110,15 +132,25 @@ struct Setup {
 
 /// Masses of the nodes of `L` (L.x, L.v are the caller's: set them after this).
 void lumpMasses(const Setup& s, Line& L);
+/// cos(dphi / 2) of the turn between unit tangents ta and tb, or 1 where it is below
+/// 1 - kMaxChordCorrection (see there).
+inline double chordFactor(const Vec3& ta, const Vec3& tb) {
+  const double c = std::sqrt(std::max(0.0, 0.5 * (1.0 + ta.dot(tb))));
+  return c >= 1.0 - kMaxChordCorrection ? c : 1.0;
+}
+/// The reference lengths L.ref at the start of a fallback step that follows an implicit one:
+/// h chordFactor of the box state's tangents at the interval's nodes (`tangent`, unit vectors),
+/// so that the lumped line starts with the box state's strains.
+void setReferenceLengths(const Setup& s, const std::vector<Vec3>& tangent, Line& L);
 /// Unit tangents at the nodes: the mean of the adjacent chords' directions (one-sided at the
 /// ends and junctions).
 void updateTangents(const Setup& s, Line& L);
 /// The largest stable sub-step [s]: kCourant times 2 / w_max of the stiffest interval's axial
 /// mode (and of each node's seabed spring).
 double stableSubstep(const Setup& s, const Line& L);
-/// Strain of the chord of interval j [-].
-inline double chordStrain(const Line& L, const MeshInterval& iv, int j) {
-  return (L.x[static_cast<std::size_t>(j) + 1] - L.x[static_cast<std::size_t>(j)]).norm() / iv.h - 1.0;
+/// Strain of the chord of interval j against its reference length [-].
+inline double chordStrain(const Line& L, int j) {
+  return (L.x[static_cast<std::size_t>(j) + 1] - L.x[static_cast<std::size_t>(j)]).norm() / L.ref[static_cast<std::size_t>(j)] - 1.0;
 }
 
 /// Forces on the lumped nodes at time fraction `w` of the step [N].
@@ -155,11 +187,11 @@ void forces(const Setup& s, const Model& model, const std::vector<NodeWater>& wa
     if (j == s.parted) continue;  // a parted interval carries no force between its nodes
     const Vec3 d = L.x[j + 1] - L.x[j];
     const double len = d.norm();
-    const double eps = len / h - 1.0;
+    const double eps = len / L.ref[j] - 1.0;
     Vec3 t = len > kShortChord * h ? Vec3(d / len) : Vec3(L.tangent[j]);
     // Axial force with proportional damping on the strain rate; a line without compression
     // neither pushes nor pulls back through the damper below zero tension.
-    const double eps_rate = len > kShortChord * h ? t.dot(L.v[j + 1] - L.v[j]) / h : 0.0;
+    const double eps_rate = len > kShortChord * h ? t.dot(L.v[j + 1] - L.v[j]) / L.ref[j] : 0.0;
     const double slope = std::max(m.rawTensionSlope(std::max(eps, 0.0)), 0.0);
     double T = m.tension(eps) + kAxialDampingRatio * std::sqrt(slope * m.mass) * h * eps_rate;
     if (!m.compression) T = m.tension(eps) > 0.0 ? std::max(T, 0.0) : 0.0;
@@ -272,6 +304,32 @@ bool advance(const Setup& s, const Model& model, const std::vector<NodeWater>& w
   updateTangents(s, L);
   substeps = steps;
   return true;
+}
+
+/// The bookkeeping of an accepted fallback step on a solver's state `im` (DynamicSolver2D::Impl or
+/// DynamicSolver3D::Impl): the step counted in the report and the totals, the line marked as in
+/// the fallback with the reference lengths its next fallback step keeps.
+template <class Impl, class Report>
+void countFallbackStep(Impl& im, Report& rep, long substeps, const Line& L) {
+  ++rep.steps;
+  ++rep.fallback_steps;
+  ++im.totals.steps;
+  ++im.totals.fallback_steps;
+  im.totals.fallback_substeps += substeps;
+  im.in_fallback = true;
+  im.fallback_ref = L.ref;
+}
+
+/// After a fallback step: whether the next base step goes to the fallback at once, without an
+/// implicit try: the line is still folded (a node of a material without compression, chain or
+/// rope, whose strain Y[n_unknowns j + eps] is below -kFoldedStrain: negative strain is slack, not
+/// a compressed rod), for less than kMaxSkippedTime in a row (sums of dt).
+template <class Impl>
+bool stayFolded(const Impl& im, int n_unknowns, int eps) {
+  if (!im.in_fallback || im.fallback_skipped_time >= kMaxSkippedTime * (1.0 - 1e-9)) return false;
+  for (int j = 0; j < im.nodes(); ++j)
+    if (!im.mat(j).compression && im.Y[n_unknowns * j + eps] < -kFoldedStrain) return true;
+  return false;
 }
 
 }  // namespace lumped
