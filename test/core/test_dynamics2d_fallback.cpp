@@ -26,33 +26,6 @@ constexpr double kSnapRelTol = 0.005;
 /// different steps; measured 0.2 % on ten cycles.
 constexpr double kPlanarPeakRelTol = 0.02;
 
-/// A 100 kg weight (wet weight W = 981 N, no drag) hanging in 2-D on 10 m of rope (EA = 1e5 N,
-/// k = EA / L = 1e4 N/m, no compression, 1 m mesh) from a point that drops by h + W / k in 0.1 s
-/// (h = 0.5 m): the weight falls freely through h and snaps the rope, peak
-/// W (1 + sqrt(1 + 2 k h / W)) = 4263.1 N. Below the weight a light, compliant tail to the anchor
-/// (the 2-D solver has no free end; the tail carries 0.05 N and goes slack as the weight falls).
-const char* const kSnapYaml = R"(
-name: weight dropped on a slack rope, 2-D
-environment: {depth: 40}
-materials:
-  rope: {EA: 1.0e5, EI: 0.01, GJ: 0.01, mass: 0.01, wet_weight: 0.0981, diameter: 0.001,
-         cdn: 0, cdt: 0, compression: false}
-  tail: {EA: 10.0, EI: 0.0001, GJ: 0.0001, mass: 0.001, wet_weight: 0.00981, diameter: 0.001,
-         cdn: 0, cdt: 0, compression: false}
-bodies:
-  weight: {mass: 100, wet_weight: 981, diameter: 0.3, cd: 0}
-line:
-  - {material: tail, length: 9.85, spacing: 0.985}
-  - {body: weight}
-  - {material: rope, length: 10, spacing: 1}
-top:
-  position: {x: 0, z: -20}
-dynamics:
-  duration: 0.9
-  dt: 0.001
-  top_motion: {type: position_table, table: [[0, 0, -20], [0.1, 0, -20.5981]]}
-)";
-
 /// config/heaved_slack.yaml with `compression: false` on its chain too (issue case: the 2-D run
 /// stopped at t = 0.58 s before the fallback).
 Problem heavedSlackNoCompression(double duration) {
@@ -74,7 +47,8 @@ double peakIn(const DynamicSeries& r, double t0, double t1) {
 }  // namespace
 
 TEST(Dynamics2DFallback, SnapOfAWeightDroppedOnASlackRopeMeetsTheClosedForm) {
-  const Problem p = loadProblemFromString(kSnapYaml);
+  // test/data/snap_inline_weight.yaml: the weight inline above a light tail (no free end in 2-D).
+  const Problem p = loadProblemFromFile("test/data/snap_inline_weight.yaml");
   ASSERT_EQ(p.formulation, Formulation::TwoD);
   const DynamicSeries r = runDynamic(p);
   ASSERT_TRUE(r.completed) << r.message;
