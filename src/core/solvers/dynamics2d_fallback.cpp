@@ -12,8 +12,9 @@
 // over the step divided by dt.
 //
 // Taken by the fallback: a line from its anchor to a top whose motion is prescribed (position,
-// velocity, or velocity with position feedback). Not taken (the step fails as before, with the
-// reason added to the message): a force top, a surface buoy, a subsurface body.
+// velocity, or velocity with position feedback; a surface buoy's top, which moves as prescribed in
+// dynamics). Not taken (the step fails as before, with the reason added to the message): a force
+// top (or a top motion given as forces), a subsurface body.
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -129,7 +130,8 @@ void toBoxState(const DynamicSolver2D::Impl& im, const Line& L, const Eigen::Vec
 }  // namespace
 
 std::string fallbackUnavailable(const DynamicSolver2D::Impl& im) {
-  if (std::strcmp(im.upper->name(), "position top") != 0)
+  // A surface buoy's top moves as prescribed in dynamics (its balance is the statics' alone).
+  if (std::strcmp(im.upper->name(), "position top") != 0 && std::strcmp(im.upper->name(), "surface buoy") != 0)
     return std::string("no fallback step for a line whose top is a ") + im.upper->name();
   if (std::strcmp(im.lower->name(), "anchor") != 0)
     return std::string("no fallback step for a line whose lower end is a ") + im.lower->name();

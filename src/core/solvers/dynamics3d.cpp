@@ -596,7 +596,9 @@ StepReport DynamicSolver3D::advanceTo(double t_end) {
   struct Fallback {
     Impl* im;
     int levels(int max_levels) const {
-      if (!im->opt.fallback) return max_levels;
+      // A line the fallback cannot take (a buoy, body or force top; the winch running) keeps every
+      // cut level, as without the fallback.
+      if (!im->opt.fallback || !fallbackUnavailable(*im, im->t + im->opt.dt).empty()) return max_levels;
       if (stayInFallback(*im)) return -1;
       return im->in_fallback ? 0 : std::min(max_levels, im->opt.fallback_after_cuts);
     }

@@ -11,7 +11,7 @@
 // step starts from there; while the line stays folded it fails and falls back again.
 //
 // Not taken by the fallback (the step then fails as before, with the reason added to the
-// message): a force, buoy, body or drifting-buoy top, a step in which the winch runs
+// message): a force, subsurface-body or drifting-buoy top, a step in which the winch runs
 // (fallbackUnavailable()). A body at a free lower end is a lumped mass (its mass plus added
 // mass) at node 0 with its weight and drag. The top follows its prescribed path, the anchor
 // stays (or follows its motion); a released end is a free node.
@@ -46,7 +46,8 @@ Ends endsOf(const DynamicSolver3D::Impl& im) {
   Ends e;
   e.top = im.upper->name();
   e.low = im.lower->name();
-  e.top_held = e.top == "position top" || e.top == "tow point";
+  // A surface buoy's top moves as prescribed in dynamics (its balance is the statics' alone).
+  e.top_held = e.top == "position top" || e.top == "tow point" || e.top == "surface buoy";
   e.top_free = e.top == "released top";
   e.low_held = e.low == "anchor" || e.low == "moving anchor";
   e.low_free = e.low == "released lower end" || e.low == "free end" || e.low == "free end with body";
@@ -66,6 +67,7 @@ std::string fallbackUnavailable(const DynamicSolver3D::Impl& im, double t_new) {
   const Ends e = endsOf(im);
   if (!(e.top_held || e.top_free)) return "no fallback step for a line whose top is a " + e.top;
   if (!(e.low_held || e.low_free)) return "no fallback step for a line whose lower end is a " + e.low;
+  if (e.top_held && im.top(t_new).force) return "no fallback step while the top's force is given";
   // The winch's rate is set only inside an implicit step: ask its program whether the length
   // moves over this one (a step past a limit is refused by the implicit step, and stays refused).
   const WinchState& w = im.winch;
