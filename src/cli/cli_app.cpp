@@ -427,7 +427,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       return kExitOk;
     }
     if (cmd->run == nullptr) {
-      err << kProg << ": '" << cmd->name << "' is not yet implemented (see README.md, Status)\n";
+      err << kProg << ": '" << cmd->name << "' is not yet implemented (see docs/status.md)\n";
       return kExitUsage;
     }
     return cmd->run(args, out, err);

@@ -10,7 +10,7 @@ namespace cli {
 /// Tool version; keep in step with <version> in package.xml (test_cli checks it).
 inline constexpr const char* kVersion = "0.1.0";
 
-/// Process exit codes (documented in `cable_sim --help` and README.md).
+/// Process exit codes (documented in `cable_sim --help` and docs/cli.md).
 enum ExitCode : int {
   kExitOk = 0,            ///< success
   kExitInternal = 1,      ///< unexpected internal error (a bug: please report it)

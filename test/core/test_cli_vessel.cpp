@@ -148,7 +148,7 @@ TEST_F(CliVessel, DynamicRunFollowsTheTableWithTheSameBitsOnOneAndTwoThreads) {
 // A step that fails at its smallest cut (4 Newton iterations, no cutting, no fallback step: the
 // forced failure) stops
 // the run as it stops a single line's: the series up to the last good sample is written, the
-// summary says "completed": false, and the exit code is 4 (README, "Exit codes").
+// summary says "completed": false, and the exit code is 4 (docs/cli.md, "Exit codes").
 TEST_F(CliVessel, DynamicRunThatStopsExitsFourAndWritesUpToTheLastGoodSample) {
   std::string text = kVessel;
   text.replace(text.find("dynamics: {dt: 0.25, lambda_inf: -0.5}"), 38,
