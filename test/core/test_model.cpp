@@ -2,7 +2,6 @@
 // validation messages of Problem and StaticOptions.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -662,10 +661,10 @@ TEST(Environment, CurrentProfileAtAndAroundIsThreeLookUpsBitForBit) {
   }
 }
 
-// Issue 22: a current table of a million points is looked up by bisection. The values are checked
-// against the table's own linear law (speed = a + b * depth, one direction: the interpolation is
-// exact), and 2e5 lookups must take well under a second (a linear search would take minutes).
-TEST(CurrentProfileLarge, MillionPointTableInterpolatesExactlyAndFast) {
+// Issue 22: a current table of a million points. The values are checked against the table's own
+// linear law (speed = a + b * depth, one direction: the interpolation is exact). The lookup's cost
+// (a bisection, not a scan) is measured in bench/bench_current.cpp, not timed here.
+TEST(CurrentProfileLarge, MillionPointTableInterpolatesExactly) {
   constexpr std::size_t kPoints = 1000000;
   constexpr double kA = 0.2, kB = 1e-4, kDir = 0.3;
   std::vector<CurrentPoint> table(kPoints);
@@ -677,7 +676,6 @@ TEST(CurrentProfileLarge, MillionPointTableInterpolatesExactlyAndFast) {
   Environment env;
   env.current = table;
   const CurrentProfile prof(table);
-  const auto t0 = std::chrono::steady_clock::now();
   double sum = 0.0;
   constexpr int kLookups = 200000;
   for (int k = 0; k < kLookups; ++k) {
@@ -697,8 +695,5 @@ TEST(CurrentProfileLarge, MillionPointTableInterpolatesExactlyAndFast) {
       EXPECT_EQ(euy, uy);
     }
   }
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_TRUE(std::isfinite(sum));
-  // Bisection: ~20 comparisons per lookup, a few ms in all (ASan builds ~10x); linear: ~1e11 steps.
-  EXPECT_LT(secs, 2.0);
 }
