@@ -23,7 +23,7 @@
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/core/io/problem_io.hpp"
-#include "mooring_dynamics/ros/companions.hpp"
+#include "mooring_dynamics/ros/tools/companions.hpp"
 
 namespace {
 

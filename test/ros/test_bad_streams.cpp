@@ -38,9 +38,9 @@
 #include "mooring_dynamics/SolveStatic.h"
 #include "mooring_dynamics/VesselStatics.h"
 #include "mooring_dynamics/core/io/problem_io.hpp"
-#include "mooring_dynamics/ros/companions.hpp"
-#include "mooring_dynamics/ros/lockstep_monitor.hpp"
-#include "mooring_dynamics/ros/vessel_monitor.hpp"
+#include "mooring_dynamics/ros/tools/companions.hpp"
+#include "mooring_dynamics/ros/nodes/lockstep_monitor.hpp"
+#include "mooring_dynamics/ros/nodes/vessel_monitor.hpp"
 
 namespace md = mooring_dynamics;
 namespace lk = mooring_dynamics::ros_bridge::lockstep_keys;

@@ -27,7 +27,7 @@
 #include "mooring_dynamics/core/solvers/dynamics3d.hpp"
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/solvers/solvers.hpp"
-#include "mooring_dynamics/ros/lockstep.hpp"
+#include "mooring_dynamics/ros/nodes/lockstep.hpp"
 
 using mooring_dynamics::CableState;
 namespace core = mooring_dynamics::core;

@@ -25,7 +25,7 @@
 
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/SolveStatic.h"
-#include "mooring_dynamics/ros/markers.hpp"
+#include "mooring_dynamics/ros/publish/markers.hpp"
 
 using mooring_dynamics::CableState;
 using mooring_dynamics::SolveStatic;

@@ -23,9 +23,9 @@
 #include "mooring_dynamics/CableState.h"
 #include "mooring_dynamics/SolveStatic.h"
 #include "mooring_dynamics/core/io/problem_io.hpp"
-#include "mooring_dynamics/ros/converter.hpp"
-#include "mooring_dynamics/ros/markers.hpp"
-#include "mooring_dynamics/ros/static_node.hpp"
+#include "mooring_dynamics/ros/publish/converter.hpp"
+#include "mooring_dynamics/ros/publish/markers.hpp"
+#include "mooring_dynamics/ros/nodes/static_node.hpp"
 
 using mooring_dynamics::CableState;
 using mooring_dynamics::SolveStatic;

@@ -44,7 +44,7 @@
 #include "mooring_dynamics/core/model/storm_motion.hpp"
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
 #include "mooring_dynamics/core/solvers/vessel_statics.hpp"
-#include "mooring_dynamics/ros/converter.hpp"
+#include "mooring_dynamics/ros/publish/converter.hpp"
 
 namespace core = mooring_dynamics::core;
 namespace fs = std::filesystem;

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "mooring_dynamics/core/io/problem_io.hpp"
-#include "mooring_dynamics/ros/companions.hpp"
+#include "mooring_dynamics/ros/tools/companions.hpp"
 
 using namespace mooring_dynamics::ros_bridge;
 

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "mooring_dynamics/core/io/problem_io.hpp"
-#include "mooring_dynamics/ros/lockstep.hpp"
-#include "mooring_dynamics/ros/lockstep_monitor.hpp"
-#include "mooring_dynamics/ros/markers.hpp"
+#include "mooring_dynamics/ros/nodes/lockstep.hpp"
+#include "mooring_dynamics/ros/nodes/lockstep_monitor.hpp"
+#include "mooring_dynamics/ros/publish/markers.hpp"
 
 using namespace mooring_dynamics;
 using ros_bridge::LockstepDriver;

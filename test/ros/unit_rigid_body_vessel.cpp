@@ -1,6 +1,6 @@
 // The 6-DOF vessel of the coupling example against closed forms: free heave and roll periods,
 // the forced heave amplitude of a damped oscillator, and rest in equilibrium.
-#include "mooring_dynamics/ros/rigid_body_vessel.hpp"
+#include "mooring_dynamics/ros/tools/rigid_body_vessel.hpp"
 
 #include <cmath>
 

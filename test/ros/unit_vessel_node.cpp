@@ -10,8 +10,8 @@
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/model/utilization.hpp"
 #include "mooring_dynamics/core/solvers/vessel_statics.hpp"
-#include "mooring_dynamics/ros/converter.hpp"
-#include "mooring_dynamics/ros/vessel_monitor.hpp"
+#include "mooring_dynamics/ros/publish/converter.hpp"
+#include "mooring_dynamics/ros/nodes/vessel_monitor.hpp"
 
 namespace core = mooring_dynamics::core;
 namespace rb = mooring_dynamics::ros_bridge;
