@@ -17,31 +17,15 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.hpp"
+
 namespace fs = std::filesystem;
+using namespace md_cli_test;
 
 namespace {
 
-#ifdef CABLE_SIM_EXE
-const char* const kExe = CABLE_SIM_EXE;
-#else
-const char* const kExe = nullptr;
-#endif
-
 /// The corpus must cover the classes of issue 22 with room to spare.
 constexpr std::size_t kMinCorpusFiles = 40;
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-std::string shellQuote(const std::string& s) {
-  std::string o = "'";
-  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return o + "'";
-}
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
@@ -81,23 +65,6 @@ Expectation readHeader(const fs::path& p) {
     }
   }
   return e;
-}
-
-struct RunResult {
-  int code = -1;
-  std::string err;
-};
-
-RunResult runCableSim(const std::vector<std::string>& args, const fs::path& dir) {
-  std::string cmd = shellQuote(kExe);
-  for (const auto& a : args) cmd += " " + shellQuote(a);
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  cmd += " >" + shellQuote(out.string()) + " 2>" + shellQuote(err.string());
-  const int status = std::system(cmd.c_str());
-  RunResult r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = readText(err);
-  return r;
 }
 
 std::vector<fs::path> corpus() {

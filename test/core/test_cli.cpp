@@ -14,39 +14,17 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.hpp"
+
 namespace fs = std::filesystem;
+using namespace md_cli_test;
 
 namespace {
-
-#ifdef CABLE_SIM_EXE
-const char* const kExe = CABLE_SIM_EXE;
-#else
-const char* const kExe = nullptr;
-#endif
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-void writeText(const fs::path& p, const std::string& text) {
-  std::ofstream f(p, std::ios::binary);
-  f << text;
-  ASSERT_TRUE(f.good()) << p;
-}
 
 std::size_t countLines(const std::string& s) {
   std::size_t n = 0;
   for (char c : s) n += c == '\n';
   return n;
-}
-
-std::string shellQuote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
 }
 
 // A fully suspended elastic catenary: 100 m of line, top at (80, 0), anchor at (0, -60).
@@ -63,48 +41,15 @@ top:
   position: {x: 80, z: 0}
 )";
 
-struct RunResult {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-class CliTest : public ::testing::Test {
+class CliTest : public CliFixture {
  protected:
-  void SetUp() override {
-    ASSERT_NE(kExe, nullptr) << "CABLE_SIM_EXE is not defined: see the test_cli lines in CMakeLists.txt";
-    ASSERT_TRUE(fs::exists(kExe)) << "cable_sim binary not found at " << kExe;
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("md_test_cli_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);
-  }
+  CliTest() : CliFixture("test_cli") {}
 
   fs::path file(const std::string& name, const std::string& text) {
     const fs::path p = dir_ / name;
     writeText(p, text);
     return p;
   }
-
-  RunResult run(const std::vector<std::string>& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    std::string cmd = shellQuote(kExe);
-    for (const auto& a : args) cmd += " " + shellQuote(a);
-    cmd += " >" + shellQuote(out.string()) + " 2>" + shellQuote(err.string());
-    const int status = std::system(cmd.c_str());
-    RunResult r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = readText(out);
-    r.err = readText(err);
-    return r;
-  }
-
-  fs::path dir_;
 };
 
 // ---- usage errors: exit 2 ------------------------------------------------------------------

@@ -16,15 +16,12 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_runner.hpp"
+
 namespace fs = std::filesystem;
+using namespace md_cli_test;
 
 namespace {
-
-#ifdef CABLE_SIM_EXE
-const char* const kExe = CABLE_SIM_EXE;
-#else
-const char* const kExe = nullptr;
-#endif
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kLat = 41.5;                                // [deg]
@@ -32,19 +29,6 @@ constexpr double kLat = 41.5;                                // [deg]
 double meridianRadius() {
   const double a = 6378137.0, f = 1.0 / 298.257223563, e2 = f * (2.0 - f), s = std::sin(kLat * kPi / 180.0);
   return a * (1.0 - e2) / std::pow(1.0 - e2 * s * s, 1.5);
-}
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
 }
 
 std::vector<std::vector<double>> csvRows(const std::string& text) {
@@ -87,36 +71,13 @@ vessel:
     - {name: aft, fairlead: [-20, 0, -5], anchor: [-270, 0, -100], segments: [{material: chain, length: 300, spacing: 10}]}
 )";
 
-struct RunResult {
-  int code = -1;
-  std::string out, err;
-};
-
-class CliGnss : public ::testing::Test {
+class CliGnss : public CliFixture {
  protected:
-  void SetUp() override {
-    ASSERT_NE(kExe, nullptr);
-    dir_ = fs::temp_directory_path() / ("md_test_cli_gnss_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);
-  }
-  RunResult run(const std::vector<std::string>& args) {
-    std::string cmd = quote(kExe);
-    for (const auto& a : args) cmd += " " + quote(a);
-    cmd += " >" + quote((dir_ / "o.txt").string()) + " 2>" + quote((dir_ / "e.txt").string());
-    const int st = std::system(cmd.c_str());
-    return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, readText(dir_ / "o.txt"), readText(dir_ / "e.txt")};
-  }
+  CliGnss() : CliFixture("test_cli_gnss") {}
   std::string write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name) << text;
     return (dir_ / name).string();
   }
-  fs::path dir_;
 };
 
 }  // namespace

@@ -23,33 +23,18 @@
 #include <thread>
 #include <vector>
 
+#include "cli_runner.hpp"
+
 namespace fs = std::filesystem;
+using namespace md_cli_test;
 
 namespace {
-
-#ifdef CABLE_SIM_EXE
-const char* const kExe = CABLE_SIM_EXE;
-#else
-const char* const kExe = nullptr;
-#endif
 
 const std::string kData = std::string(MD_SOURCE_DIR) + "/test/data/";
 constexpr std::size_t kCases = 8;
 constexpr double kMbl = 1.2e5;  // [N], set on the chain by the sweep
 
-std::string readText(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-void writeText(const fs::path& p, const std::string& text) {
-  std::ofstream f(p, std::ios::binary);
-  f << text;
-}
-
-std::string q(const std::string& s) { return "'" + s + "'"; }
+std::string q(const std::string& s) { return shellQuote(s); }
 
 struct Result {
   int code = -1;

@@ -14,28 +14,12 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_runner.hpp"
+
 namespace fs = std::filesystem;
+using namespace md_cli_test;
 
 namespace {
-
-#ifdef CABLE_SIM_EXE
-const char* const kExe = CABLE_SIM_EXE;
-#else
-const char* const kExe = nullptr;
-#endif
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 /// Two chain lines fore and aft of a 40 m hull in 100 m of water, and a motion table: the vessel
 /// surges 1 m and yaws 2 deg over 4 s.
@@ -55,19 +39,12 @@ vessel:
 dynamics: {dt: 0.25, lambda_inf: -0.5}
 )";
 
-struct RunResult {
-  int code = -1;
-  std::string out, err;
-};
-
-class CliVessel : public ::testing::Test {
+class CliVessel : public CliFixture {
  protected:
+  CliVessel() : CliFixture("test_cli_vessel") {}
   void SetUp() override {
-    ASSERT_NE(kExe, nullptr);
-    dir_ = fs::temp_directory_path() / ("md_test_cli_vessel_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    CliFixture::SetUp();
+    if (HasFatalFailure()) return;
     std::ofstream(dir_ / "vessel.yaml") << kVessel;
     std::ofstream m(dir_ / "motion.csv");
     m << "t,x,y,z,qx,qy,qz,qw\n";
@@ -76,19 +53,7 @@ class CliVessel : public ::testing::Test {
       m << t << "," << s << ",0,0,0,0," << std::sin(yaw / 2) << "," << std::cos(yaw / 2) << "\n";
     }
   }
-  void TearDown() override {
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);
-  }
-  RunResult run(const std::vector<std::string>& args) {
-    std::string cmd = quote(kExe);
-    for (const auto& a : args) cmd += " " + quote(a);
-    cmd += " >" + quote((dir_ / "o.txt").string()) + " 2>" + quote((dir_ / "e.txt").string());
-    const int st = std::system(cmd.c_str());
-    return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, readText(dir_ / "o.txt"), readText(dir_ / "e.txt")};
-  }
   std::string file() const { return (dir_ / "vessel.yaml").string(); }
-  fs::path dir_;
 };
 
 }  // namespace
