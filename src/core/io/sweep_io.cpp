@@ -1,5 +1,5 @@
 // Sweep files -> SweepSpec, cases and their problem files (see sweep_io.hpp and
-// docs/design_analysis.md for the format). Errors name the key, the value and the constraint as
+// docs/design_analysis.md for the format); the manifest a sweep folder keeps: sweep_manifest.cpp. Errors name the key, the value and the constraint as
 // the problem loader's do (yaml_reader.hpp).
 #include "mooring_dynamics/core/io/sweep_io.hpp"
 
@@ -17,6 +17,7 @@
 #include "mooring_dynamics/core/io/problem_io.hpp"
 #include "mooring_dynamics/core/io/yaml_reader.hpp"
 #include "problem_sections.hpp"
+#include "sweep_detail.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -25,6 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace yaml;
+using sweep_detail::fmt12;
+using sweep_detail::readDesignCheck;
 
 /// The keys whose values are file names (relative to the file they are written in).
 const std::vector<std::string> kPathKeys = {"environment.seabed.grid_file", "environment.current.file",
@@ -33,19 +36,6 @@ const std::vector<std::string> kPathKeys = {"environment.seabed.grid_file", "env
 
 /// Most cases a sweep may expand to (a typo in a range must not write millions of files).
 constexpr std::size_t kMaxCases = 100000;
-
-/// statistics.design_check: {consequence_class: 1 | 2, als: [labels]} (the labels are checked
-/// against the variations once they are read).
-void readDesignCheck(const Item& it, SweepSpec& spec) {
-  const Map m(it, {"consequence_class", "als"});
-  const Item ci = m.required("consequence_class", "1 or 2 (DNV-OS-E301)");
-  const long long c = readInteger(ci);
-  if (c != 1 && c != 2) ci.fail("must be 1 or 2 (DNV-OS-E301's consequence classes)");
-  spec.design_class = static_cast<int>(c);
-  spec.als_labels.clear();
-  if (m.has("als"))
-    for (const Item& li : listItems(m.at("als"))) spec.als_labels.push_back(readString(li));
-}
 
 bool isPathKey(const std::string& key) {
   for (const auto& k : kPathKeys)
@@ -59,12 +49,6 @@ std::string flowText(const YAML::Node& n) {
   e.SetSeqFormat(YAML::Flow);
   e << n;
   return e.c_str();
-}
-
-std::string fmt12(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return buf;
 }
 
 bool labelChar(char c) {
@@ -556,112 +540,6 @@ std::string caseProblemText(const SweepSpec& spec, const SweepCase& c, const std
   YAML::Emitter e;
   e << root;
   return std::string(e.c_str()) + "\n";
-}
-
-// ---------------------------------------------------------------------------------------------
-// Manifest
-
-SweepManifest manifestOf(const SweepSpec& spec, const std::vector<SweepCase>& cases) {
-  SweepManifest m;
-  m.name = spec.name;
-  m.gumbel = spec.gumbel;
-  m.skip_time = spec.skip_time;
-  m.design_class = spec.design_class;
-  m.als_labels = spec.als_labels;
-  for (const auto& v : spec.variations) {
-    SweepManifest::Variation mv;
-    mv.name = v.name;
-    mv.seeds = v.seeds;
-    for (const auto& val : v.values) {
-      mv.labels.push_back(val.label);
-      mv.numbers.push_back(val.numeric ? val.number : std::numeric_limits<double>::quiet_NaN());
-    }
-    m.variations.push_back(mv);
-  }
-  m.cases = cases;
-  return m;
-}
-
-std::string manifestText(const SweepManifest& m) {
-  YAML::Emitter e;
-  e << YAML::Comment("cable_sim sweep manifest: read by 'cable_sim sweep --collect'");
-  e << YAML::BeginMap;
-  e << YAML::Key << "name" << YAML::Value << m.name;
-  e << YAML::Key << "gumbel_fit" << YAML::Value << gumbelMethodName(m.gumbel);
-  e << YAML::Key << "skip_time" << YAML::Value << fmt12(m.skip_time);
-  if (m.design_class > 0)
-    e << YAML::Key << "design_check" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "consequence_class"
-      << YAML::Value << m.design_class << YAML::Key << "als" << YAML::Value << YAML::Flow << m.als_labels << YAML::EndMap;
-  e << YAML::Key << "variations" << YAML::Value << YAML::BeginSeq;
-  for (const auto& v : m.variations) {
-    e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << v.name << YAML::Key << "seeds"
-      << YAML::Value << v.seeds << YAML::Key << "labels" << YAML::Value << YAML::Flow << v.labels << YAML::Key
-      << "numbers" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-    for (double d : v.numbers) {
-      if (std::isfinite(d)) e << fmt12(d);
-      else e << YAML::Null;
-    }
-    e << YAML::EndSeq << YAML::EndMap;
-  }
-  e << YAML::EndSeq;
-  e << YAML::Key << "cases" << YAML::Value << YAML::BeginSeq;
-  for (const auto& c : m.cases)
-    e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << c.name << YAML::Key << "storm"
-      << YAML::Value << c.storm << YAML::Key << "choice" << YAML::Value << YAML::Flow << c.choice << YAML::EndMap;
-  e << YAML::EndSeq << YAML::EndMap;
-  return std::string(e.c_str()) + "\n";
-}
-
-SweepManifest loadManifestFromFile(const std::string& path) {
-  try {
-    const YAML::Node root = sections::parseYaml(sections::readFileText(path));
-    const Item top_item{root, "", YAML::Mark::null_mark()};
-    const Map top(top_item, {"name", "gumbel_fit", "skip_time", "design_check", "variations", "cases"});
-    SweepManifest m;
-    m.skip_time = top.number("skip_time", Range::NonNegative);
-    if (top.has("design_check")) {
-      SweepSpec d;
-      readDesignCheck(top.at("design_check"), d);
-      m.design_class = d.design_class;
-      m.als_labels = d.als_labels;
-    }
-    m.name = readString(top.required("name"));
-    const Item gi = top.required("gumbel_fit");
-    try {
-      m.gumbel = gumbelMethodFromName(readString(gi));
-    } catch (const std::invalid_argument&) {
-      gi.failQuoted("needs moments or mle");
-    }
-    for (const Item& vi : listItems(top.required("variations"))) {
-      const Map vm(vi, {"name", "seeds", "labels", "numbers"});
-      SweepManifest::Variation v;
-      v.name = readString(vm.required("name"));
-      v.seeds = readBool(vm.required("seeds"));
-      for (const Item& li : listItems(vm.required("labels"))) v.labels.push_back(readString(li));
-      for (const Item& ni : listItems(vm.required("numbers")))
-        v.numbers.push_back(ni.node.IsNull() ? std::numeric_limits<double>::quiet_NaN() : readNumber(ni));
-      if (v.numbers.size() != v.labels.size()) vm.at("numbers").failNoValue("needs one number (or ~) per label");
-      m.variations.push_back(v);
-    }
-    for (const Item& ci : listItems(top.required("cases"))) {
-      const Map cm(ci, {"name", "storm", "choice"});
-      SweepCase c;
-      c.name = readString(cm.required("name"));
-      c.storm = readString(cm.required("storm"));
-      for (const Item& k : listItems(cm.required("choice"))) {
-        const long long v = readInteger(k);
-        if (v < 0) k.fail("must be >= 0");
-        c.choice.push_back(static_cast<std::size_t>(v));
-      }
-      if (c.choice.size() != m.variations.size()) cm.at("choice").failNoValue("needs one index per variation");
-      for (std::size_t v = 0; v < c.choice.size(); ++v)
-        if (c.choice[v] >= m.variations[v].labels.size()) cm.at("choice").failNoValue("index out of range of variation " + m.variations[v].name);
-      m.cases.push_back(c);
-    }
-    return m;
-  } catch (const ProblemError& e) {
-    throw ProblemError(path + ": " + e.what());
-  }
 }
 
 }  // namespace core
