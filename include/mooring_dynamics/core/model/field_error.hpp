@@ -22,5 +22,10 @@ inline std::string fieldError(const std::string& key, double v, const std::strin
   return key + " = " + fieldNumber(v) + ": " + constraint;
 }
 
+/// "" when `ok`, else fieldError(key, v, constraint): the validations' one-line checks.
+inline std::string fieldCheck(bool ok, const std::string& key, double v, const std::string& constraint) {
+  return ok ? std::string() : fieldError(key, v, constraint);
+}
+
 }  // namespace core
 }  // namespace mooring_dynamics
