@@ -1,6 +1,7 @@
 // The 3-D dynamic solver's state (DynamicSolver3D::Impl), shared by its source files:
-// dynamics3d.cpp (the time step, line events) and dynamics3d_winch.cpp (the winch's payout and
-// haul-in). Private to src/core/solvers.
+// dynamics3d.cpp (the time step as a Newton system, the start, advanceTo, save and restore),
+// dynamics3d_events.cpp (line events), dynamics3d_fallback.cpp (the fallback step) and
+// dynamics3d_winch.cpp (the winch's payout and haul-in). Private to src/core/solvers.
 #pragma once
 
 #include <functional>
@@ -178,6 +179,20 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep);
 /// more than kFoldedStrain in a material without compression, and for less than kMaxSkippedTime
 /// in a row).
 bool stayInFallback(const DynamicSolver3D::Impl& im);
+
+// Line events (dynamics3d_events.cpp; docs/method.md "Line events").
+/// v to 6 significant digits, as the solver's messages write times and tensions.
+std::string fmtNum(double v);
+/// Let go the lower or upper end now (its rows become a free end's), logged with `cause`.
+void releaseEnd(DynamicSolver3D::Impl& im, LineEvent::End end, const std::string& cause);
+/// Part the line at node k now (the interval above it carries no force), logged with `cause`.
+void partAt(DynamicSolver3D::Impl& im, int k, const std::string& cause);
+/// Let dynamics.events[i] happen now.
+void applyEvent(DynamicSolver3D::Impl& im, std::size_t i, const std::string& cause);
+/// After an accepted step: the events on tension whose limit a node now exceeds happen.
+void breakOnTension(DynamicSolver3D::Impl& im);
+/// The first timed event that has not happened (-1: none).
+int nextTimedEvent(const DynamicSolver3D::Impl& im);
 
 // The winch (dynamics3d_winch.cpp).
 /// Set up from the problem after the statics (the mesh final).
