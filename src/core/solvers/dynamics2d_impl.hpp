@@ -1,6 +1,6 @@
 // The 2-D dynamic solver's state (DynamicSolver2D::Impl), shared by its source files:
-// dynamics2d.cpp (the time step) and dynamics2d_fallback.cpp (the fallback step). Private to
-// src/core/solvers.
+// dynamics2d.cpp (the time step), dynamics2d_start.cpp (the start) and dynamics2d_fallback.cpp (the
+// fallback step). Private to src/core/solvers.
 #pragma once
 
 #include <functional>
