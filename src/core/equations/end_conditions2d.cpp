@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "end_conditions_common.hpp"
 #include "mooring_dynamics/core/equations/end_conditions.hpp"
 #include "mooring_dynamics/core/equations/equations2d_dynamic.hpp"
 
@@ -12,9 +11,6 @@ namespace mooring_dynamics {
 namespace core {
 
 namespace {
-
-using end_detail::feedbackGain;
-using end_detail::kPositionFeedbackSteps;
 
 // =================================================================================================
 // 2-D ends

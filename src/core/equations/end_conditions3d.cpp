@@ -8,16 +8,12 @@
 #include <type_traits>
 #include <utility>
 
-#include "end_conditions_common.hpp"
 #include "mooring_dynamics/core/equations/equations3d_drifter.hpp"
 
 namespace mooring_dynamics {
 namespace core {
 
 namespace {
-
-using end_detail::feedbackGain;
-using end_detail::kPositionFeedbackSteps;
 
 /// A constant of scalar type S: zero derivatives, or the plain value.
 template <class S>

@@ -35,10 +35,12 @@ using lumped::Vec3;
 /// ends' paths in the x-z plane.
 struct Model2 {
   const DynamicSolver2D::Impl& im;
-  /// A top prescribed by its velocity alone is where the box scheme's integral of it put it
-  /// (it drifts from the commanded path by design, docs/method.md "Top boundary"): the
-  /// fallback moves it by the path's displacement from there. 0 with position feedback.
+  /// The top node's offset from its path where the step starts, kept by a top prescribed by its
+  /// velocity alone and shed as e^(-kappa (t - t0)) by one held by feedback (as in 3-D).
   Vec3 top_offset;
+  double kappa;      ///< feedbackGain [1/s]
+  double t0;         ///< the step's start [s]
+  bool compression;  ///< the top interval's material carries compression
   Vec3 anchor;  ///< the anchor's position
   double seabed(const Material& m, const Vec3& x, const Vec3& v) const {
     // phi = 0: t = (0, 1), n = (1, 0), so u is the vertical velocity and v the horizontal one.
@@ -54,8 +56,13 @@ struct Model2 {
   bool lowHeld() const { return true; }
   void top(double t, Vec3& x, Vec3& v) const {
     const TopInput in = im.top(t);
-    x = Vec3(in.x, 0.0, in.z) + top_offset;
-    v = Vec3(in.vx, 0.0, in.vz);
+    // Held by feedback: a top interval without compression (slack, folded where the top is off)
+    // goes onto the path at once, its top interval carrying nothing; one that carries compression
+    // would pass the jerk on as force, and sheds the offset at the feedback's rate. A top
+    // prescribed by velocity alone keeps its drift.
+    const double decay = kappa > 0.0 ? (compression ? std::exp(-kappa * (t - t0)) : 0.0) : 1.0;
+    x = Vec3(in.x, 0.0, in.z) + decay * top_offset;
+    v = Vec3(in.vx, 0.0, in.vz) - kappa * decay * top_offset;
   }
   void low(double, Vec3& x, Vec3& v) const {
     x = anchor;
@@ -141,15 +148,15 @@ std::string fallbackUnavailable(const DynamicSolver2D::Impl& im) {
 std::string topOffItsPath(const DynamicSolver2D::Impl& im, const Eigen::VectorXd& Yv, double t_new) {
   // As in 3-D (dynamics3d_fallback.cpp): a top held on its path by feedback is off when its node
   // is away from the path, a top prescribed by velocity alone when its node moved over the step by
-  // other than the path's displacement, where the top interval carries no compression. Unlike
-  // 3-D, a top held by feedback is checked whatever its material: config/heaved_slack.yaml with
-  // `compression: true` on its rope pushed the rope (-1.1 kN) until the converged top node had
-  // left its path by metres, and the fallback step that followed pulled it back at once: a
-  // 640 kN spike on a rope of EA 2e5 N. (A top prescribed by velocity on a line that carries
-  // compression drifts by design faster at long steps: a heaved chain at dt = 0.5 s.)
+  // other than the path's displacement. A top interval without compression (chain, rope) folds,
+  // and its top node is off at 5 % of the interval. With a material that carries compression the
+  // top node follows the feedback law, whose lag behind a fast top is no fold (a 2-D chain
+  // mooring's buoy towed at 5 m/s in lockstep): only a whole interval off is refused (a rope with
+  // the law through zero, pushed on by its top, whose top node had left its path by metres).
   const int n = im.nodes();
   if (!im.opt.fallback || !fallbackUnavailable(im).empty()) return "";
-  if (!im.problem.dynamics.top_motion.prescribe_position && im.mat(n - 1).compression) return "";
+  const bool compression = im.mat(n - 1).compression;
+  if (compression && !im.problem.dynamics.top_motion.prescribe_position) return "";
   const TopInput in = im.top(t_new);
   if (in.force) return "";
   double ex = in.x, ez = in.z;
@@ -161,7 +168,7 @@ std::string topOffItsPath(const DynamicSolver2D::Impl& im, const Eigen::VectorXd
   }
   const double off = std::hypot(Yv[N * (n - 1) + X] - ex, Yv[N * (n - 1) + Z] - ez);
   const double h = im.mesh.intervals.back().h;
-  double limit = lumped::kTopOffPath * h;
+  double limit = (compression ? lumped::kTopOffPathCompression : lumped::kTopOffPath) * h;
   if (!im.problem.dynamics.top_motion.prescribe_position) limit = std::min(limit, lumped::kTopRateMismatch * (t_new - im.t));
   if (!(off > limit)) return "";
   std::ostringstream os;
@@ -206,12 +213,9 @@ bool fallbackStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
       water[static_cast<std::size_t>(j)].*slot = Vec3(w.wx, 0.0, w.wz);
     }
   }
-  Vec3 offset = Vec3::Zero();
-  if (!im.problem.dynamics.top_motion.prescribe_position) {
-    const TopInput in = im.top(t0);
-    offset = L.x[n - 1] - Vec3(in.x, 0.0, in.z);
-  }
-  const Model2 model{im, offset, L.x[0]};
+  const TopInput in0 = im.top(t0);
+  const Vec3 offset = L.x[n - 1] - Vec3(in0.x, 0.0, in0.z);
+  const Model2 model{im, offset, feedbackGain(im.problem), t0, im.mat(n - 1).compression, L.x[0]};
   long substeps = 0;
   if (!lumped::advance(setup, model, water, t0, dt, L, substeps, rep.message)) return false;
   Eigen::VectorXd Ynew;

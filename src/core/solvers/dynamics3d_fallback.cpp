@@ -115,10 +115,15 @@ struct Model3 {
   const DynamicSolver3D::Impl& im;
   bool top_held, low_held;
   Vec3 anchor0;  ///< the anchor where the step starts (it stays there unless it moves)
-  /// A top prescribed by its velocity alone is where the box scheme's integral of it put it
-  /// (it drifts from the commanded path by design, docs/method.md "Top boundary"): the
-  /// fallback moves it by the path's displacement from there. 0 with position feedback.
+  /// The top node's offset from its path where the step starts. A top prescribed by its velocity
+  /// alone keeps it (it drifts from the path by design, docs/method.md "Top boundary"); a top
+  /// held by position feedback sheds it as the implicit step's feedback does, e^(-kappa (t - t0))
+  /// with kappa = feedbackGain: a top pulled onto its path at once would jerk the line (a rope
+  /// whose top node had left its path by metres snapped to 640 kN).
   Vec3 top_offset;
+  double kappa;      ///< feedbackGain [1/s]
+  double t0;         ///< the step's start [s]
+  bool compression;  ///< the top interval's material carries compression
   double seabed(const Material& m, const Vec3& x, const Vec3& v) const {
     double y[N] = {0.0};
     y[X] = x.x();
@@ -139,8 +144,13 @@ struct Model3 {
   bool lowHeld() const { return low_held; }
   void top(double t, Vec3& x, Vec3& v) const {
     const TopState s = im.top(t);
-    x = Vec3(s.x, s.y, s.z) + top_offset;
-    v = Vec3(s.vx, s.vy, s.vz);
+    // Held by feedback: a top interval without compression (slack, folded where the top is off)
+    // goes onto the path at once, its top interval carrying nothing; one that carries compression
+    // would pass the jerk on as force, and sheds the offset at the feedback's rate. A top
+    // prescribed by velocity alone keeps its drift.
+    const double decay = kappa > 0.0 ? (compression ? std::exp(-kappa * (t - t0)) : 0.0) : 1.0;
+    x = Vec3(s.x, s.y, s.z) + decay * top_offset;
+    v = Vec3(s.vx, s.vy, s.vz) - kappa * decay * top_offset;
   }
   void low(double t, Vec3& x, Vec3& v) const {
     if (im.lower_path) {
@@ -327,11 +337,13 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   // Which ends are held: the top on its path, the anchor where it is (or on its path).
   const Ends ends = endsOf(im);
   Vec3 top_offset = Vec3::Zero();
-  if (ends.top_held && !im.problem.dynamics.top_motion.prescribe_position) {
+  if (ends.top_held) {
     const TopState s = im.top(t0);
     top_offset = L.x[n - 1] - Vec3(s.x, s.y, s.z);
   }
-  const Model3 model{im, ends.top_held, ends.low_held, L.x[0], top_offset};
+  // A winch's top holds its position by feedback once a program was set (as its rows do).
+  const double kappa = im.winch.used ? 1.0 / (kPositionFeedbackSteps * im.problem.dynamics.dt) : feedbackGain(im.problem);
+  const Model3 model{im, ends.top_held, ends.low_held, L.x[0], top_offset, kappa, t0, im.mat(n - 1).compression};
   long substeps = 0;
   if (!lumped::advance(setupOf(im), model, water, t0, dt, L, substeps, rep.message)) return false;
   Eigen::VectorXd Ynew;

@@ -82,6 +82,9 @@ constexpr double kMaxSkippedTime = 1.0;
 /// strain rang from -6 % to +0.7 % in 0.01 s steps (3.7 MN spikes with the fairlead moving at
 /// 0.5 m/s). At 3.5 m intervals the top stayed within 0.15 m (4 %) through 150 s of Hs 6.
 constexpr double kTopOffPath = 0.05;
+/// The same for a top interval that carries compression (2-D, dynamics2d_fallback.cpp): its top
+/// node lags behind a fast top by the feedback law, no fold; a whole interval off is no lag.
+constexpr double kTopOffPathCompression = 1.0;
 /// A top prescribed by its velocity alone is also off when its node's displacement over a step
 /// differs from the prescribed one by more than this speed times the step [m/s]: such a top
 /// drifts by design, but slowly (A.3: 22 mm per 8 s cycle, 3 mm/s); after a fallback step on a

@@ -34,6 +34,17 @@
 namespace mooring_dynamics {
 namespace core {
 
+// Position feedback of a driven top (docs/method.md, "Top boundary"): the velocity of eq. 34 with
+// the position error fed back over this many BASE steps (a cut step must not raise the gain, or
+// an offset becomes a huge velocity). The fallback step pulls an offset top back at the same rate.
+inline constexpr double kPositionFeedbackSteps = 5.0;
+
+/// Gain of the position feedback [1/s]: 1 / (kPositionFeedbackSteps dt) when the problem asks for
+/// it (dynamics.top_motion.prescribe: position), else 0.
+inline double feedbackGain(const Problem& p) {
+  return p.dynamics.top_motion.prescribe_position ? 1.0 / (kPositionFeedbackSteps * p.dynamics.dt) : 0.0;
+}
+
 /// The most rows any end adds (the 3-D anchor's ten): the size of a solver's row buffer.
 constexpr int kMaxEndRows = 10;
 
