@@ -4,7 +4,9 @@
 // equations, the relative environment, and the input checks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include <Eigen/Core>
@@ -272,19 +274,85 @@ TEST(TowingDynamics, SlowingDownSinksTheBodyAndTheTensionFollowsTheNewSteadyTow)
   EXPECT_NEAR(r.node_z[0].back(), s1.nodes.front().z, kSettledRelTol * std::abs(s1.nodes.front().z));
 }
 
-TEST(TowingDynamics, TurnAndImpulsiveHeadingChangeRunThrough) {
-  // A circular turn then an impulsive return to the original heading (the paper's Case 2 on a
-  // short cable): completes with adaptive steps; the tension jumps when the heading snaps back.
-  Problem p = towRun(3.0);
-  p.dynamics.duration = 250.0;  // the turn takes 105 s
+TEST(TowingDynamics, AfterATurnAndAnImpulsiveHeadingChangeTheTowSettlesBackOnTheStaticTow) {
+  // A circular turn (200 m radius, 90 deg to the left, 105 s) then an impulsive return to the
+  // original heading (the paper's Case 2 on a short cable). Against independent answers: the top
+  // stays on the ship's track (the circle, then the straight line y = 200 m east at 3 m/s); before
+  // the turn and again after the transient, the tow is the steady tow at 3 m/s solved by the 3-D
+  // statics (tension, body depth, body straight astern at its static trailing distance).
+  // The tension's dip at the heading change is not asserted: an impulsive change of the top's
+  // velocity along a nearly inextensible cable (EA = 1e10 N, elastic wave 65 km/s) has no finite
+  // answer, and the discrete one is the time step's (measured: 1.0 kN at dt = 1 s, 0.07 kN at
+  // 0.5 s, spikes from -0.9 to +49 kN at 0.25 s); before it the turn's tensions agree to 0.01 N at
+  // the three steps.
+  constexpr double kTrackTol = 1e-6;          // [m] the top is prescribed: the track to rounding
+  // At 3 m/s the start's O(h^3 Omega^2) residual (StraightTowIsASteadyState) moves the body more
+  // than at 2 m/s: the dynamic rows' own steady tow lies 8 mm deeper than the statics' (measured
+  // after the transients, 600 s), reached to 5 mm in the first 20 s.
+  constexpr double kStartPositionTol = 0.02;  // [m]
+  // Settling 475 s (4.7 L / U) after the heading change, which threw the body 20 m off the new
+  // track: the lateral offset decays by e about every 55 s (measured: 0.05 m left at 600 s, the
+  // tension within 0.9 N, the depth 8 mm, the trailing distance 5 mm).
+  constexpr double kSettledTensionRelTol = 1e-3;
+  constexpr double kSettledDepthTol = 0.05;   // [m] of 67 m
+  constexpr double kSettledLateralTol = 0.25; // [m]
+  constexpr double kSettledTrailTol = 0.05;   // [m] of 291 m
+  const double U = 3.0, R = 200.0, t_turn = 20.0, t_change = t_turn + R * (kPi / 2) / U;
+  Problem p = towRun(U);
+  p.dynamics.duration = 600.0;
   auto& legs = p.dynamics.top_motion.ship_track.legs;
-  legs = {ShipLeg::straight(20.0), ShipLeg::turn(200.0, kPi / 2), ShipLeg::headingChange(0.0)};
+  legs = {ShipLeg::straight(t_turn), ShipLeg::turn(R, kPi / 2), ShipLeg::headingChange(0.0)};
   const DynamicSeries r = runDynamic3D(p);
   ASSERT_TRUE(r.completed) << r.message;
-  double ymax = 0.0;
-  for (double y : r.node_y[0]) ymax = std::max(ymax, y);
-  EXPECT_GT(ymax, 50.0);  // the body followed the ship round to the north
-  for (double T : r.top_tension) EXPECT_TRUE(std::isfinite(T) && T > 0.0);
+  Problem steady = towedLine(U, true);  // the same cable and body, straight tow at 3 m/s
+  steady.segments[0].spacing = 2.0;
+  steady.materials[0].cdt = 0.02;
+  const StaticResult s = solveStatic3D(steady);
+  ASSERT_TRUE(s.summary.converged) << s.summary.message;
+  const double Ts = s.topTension(), trail = s.nodes.back().x - s.nodes.front().x, zs = s.nodes.front().z;
+  const double ship_z = r.top_z.front();
+  ASSERT_GT(trail, 250.0);  // the premise: the body trails far astern, farther than the turn's radius
+  double Tmin_turn = Ts, off_at_change = 0.0;
+  for (std::size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k];
+    // The ship's track: straight along x, the circle about (U t_turn, R), then east along y = R.
+    double x, y;
+    if (t <= t_turn) {
+      x = U * t;
+      y = 0.0;
+    } else if (t <= t_change) {
+      const double a = U * (t - t_turn) / R;
+      x = U * t_turn + R * std::sin(a);
+      y = R * (1.0 - std::cos(a));
+    } else {
+      x = U * t_turn + R + U * (t - t_change);
+      y = R;
+    }
+    EXPECT_NEAR(r.top_x[k], x, kTrackTol) << "t = " << t;
+    EXPECT_NEAR(r.top_y[k], y, kTrackTol) << "t = " << t;
+    if (t <= t_turn) {  // the steady tow before the turn
+      EXPECT_NEAR(r.top_tension[k], Ts, kSteadyTensionRelTol * Ts) << "t = " << t;
+      EXPECT_NEAR(r.top_x[k] - r.node_x[0][k], trail, kStartPositionTol) << "t = " << t;
+      EXPECT_NEAR(r.node_y[0][k], 0.0, kStartPositionTol) << "t = " << t;
+      EXPECT_NEAR(r.node_z[0][k] - r.top_z[k], zs - ship_z, kStartPositionTol) << "t = " << t;
+    } else if (t < t_change) {
+      Tmin_turn = std::min(Tmin_turn, r.top_tension[k]);
+      off_at_change = R - r.node_y[0][k];
+    }
+  }
+  const std::size_t e = r.t.size() - 1;
+  std::printf("after the turn and the heading change: tension %.2f N (static tow %.2f N), body %.3f m deep "
+              "(static %.3f m), %.3f m astern (static %.3f m), %.3f m off the track; lowest tension in the turn %.1f N\n",
+              r.top_tension[e], Ts, -r.node_z[0][e], -zs, r.top_x[e] - r.node_x[0][e], trail, r.node_y[0][e] - R,
+              Tmin_turn);
+  // The premise of settling back: the body, 291 m astern, cut the 200 m turn's corner and was far
+  // off the new track when the heading changed.
+  EXPECT_GT(off_at_change, 0.5 * R);
+  EXPECT_NEAR(r.top_tension[e], Ts, kSettledTensionRelTol * Ts);
+  EXPECT_NEAR(r.node_z[0][e] - r.top_z[e], zs - ship_z, kSettledDepthTol);
+  EXPECT_NEAR(r.top_x[e] - r.node_x[0][e], trail, kSettledTrailTol);
+  EXPECT_NEAR(r.node_y[0][e], R, kSettledLateralTol);
+  for (double T : r.top_tension) EXPECT_TRUE(std::isfinite(T));
 }
 
 namespace {
