@@ -15,6 +15,13 @@
 // components up to 2 fp; 60 s (the first 20 s ramped in). Counters: real_time_factor and
 // fallback_steps (all lines). The storm issue's goals: >= 20 on two threads and >= 12 on one at
 // Hs 4; Hs 8 no more than 1.5 times the cost of Hs 2.
+//
+// BM_VesselAt1kHz/<vessel>/<solve_interval_ms>: a 1 kHz vessel simulator's poses (Hs 2 m, Tp 8 s,
+// the storm motion above sampled every 1 ms, 10 s after a 20 s ramp) fed to VesselLockstep one by
+// one. <vessel> 3: test/data/small_vessel.yaml (three 115 m chains, 77 intervals each); 8:
+// config/spread_mooring.yaml. <solve_interval_ms> 0: every pose is a solver step of 1 ms; else
+// VesselLockstepOptions::solve_interval (poses between solves answered from the last solve).
+// Counters: real_time_factor, cost_per_pose_ms (mean), solves.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -156,7 +163,71 @@ void BM_SpreadMooringStorm(benchmark::State& state) {
   state.counters["top_off_path"] = static_cast<double>(sum.top_off_path);
 }
 
+void BM_VesselAt1kHz(benchmark::State& state) {
+  const int vessel = static_cast<int>(state.range(0));
+  const double solve_interval = 1e-3 * static_cast<double>(state.range(1));
+  const std::string root = mooring_dynamics::bench::packageRoot();
+  md::SystemProblem s;
+  try {
+    s = md::loadSystemFromFile(root + (vessel == 3 ? "/test/data/small_vessel.yaml" : "/config/spread_mooring.yaml"));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  md::StormMotionOptions o = md::mooringStorm(2.0, 8.0, 30.0, 1, 30.0);
+  o.dt = 1e-3;
+  if (vessel == 3) o.mean_offset = 1.0;
+  const std::vector<md::PoseSample> samples = md::generateStormMotion(o);
+  md::VesselLockstepOptions lo;
+  lo.solve_interval = solve_interval;
+  constexpr double kFrom = 20.0;  // [s] past the ramp
+  const auto stride = static_cast<std::size_t>(std::lround(s.dynamics.dt / o.dt));
+  double simulated = 0.0, wall = 0.0, poses = 0.0;
+  long solves = 0;
+  std::vector<double> cost;
+  for (auto _ : state) {
+    md::VesselLockstep run(s, s.dynamics, lo);
+    std::size_t k = 0;
+    // Up to kFrom at the problem's dt (untimed), then every 1 ms sample (timed).
+    for (; k < samples.size() && samples[k].t < kFrom; k += stride) run.onSample(samples[k].t, samples[k].pose);
+    const double t0 = run.lastTime();
+    while (k < samples.size() && samples[k].t <= t0) ++k;
+    std::size_t n = 0;
+    solves = 0;
+    double total = 0.0;
+    for (; k < samples.size(); ++k, ++n) {
+      const auto a = std::chrono::steady_clock::now();
+      const auto r = run.onSample(samples[k].t, samples[k].pose);
+      benchmark::DoNotOptimize(run.wrench());
+      const double c = std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+      if (r.outcome != md::VesselLockstep::Outcome::Advanced && r.outcome != md::VesselLockstep::Outcome::Held) {
+        state.SkipWithError(r.message.c_str());
+        return;
+      }
+      solves += r.outcome == md::VesselLockstep::Outcome::Advanced;
+      cost.push_back(c);
+      total += c;
+    }
+    state.SetIterationTime(total);
+    simulated += samples.back().t - t0;
+    wall += total;
+    poses += static_cast<double>(n);
+  }
+  std::sort(cost.begin(), cost.end());
+  state.counters["real_time_factor"] = simulated / wall;
+  state.counters["cost_per_pose_ms"] = 1e3 * wall / std::max(1.0, poses);
+  state.counters["cost_p99_ms"] = cost.empty() ? 0.0 : 1e3 * cost[cost.size() * 99 / 100];
+  state.counters["cost_max_ms"] = cost.empty() ? 0.0 : 1e3 * cost.back();
+  state.counters["solves"] = static_cast<double>(solves);
+}
+
 }  // namespace
+
+BENCHMARK(BM_VesselAt1kHz)
+    ->ArgsProduct({{3, 8}, {0, 10, 100}})
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
 
 BENCHMARK(BM_SpreadMooringStorm)
     ->ArgsProduct({{2, 4, 8}, {1, 2}})

@@ -86,10 +86,56 @@ TEST(VesselLockstep, SameBitsOnOneAndTwoThreads) {
     for (int c = 0; c < 3; ++c) EXPECT_EQ(series[0][i][c], series[1][i][c]) << i;
 }
 
+// A 16 Hz source with solve_interval 0.25 s: the samples between solves are held (answered from
+// the last solve, counted) and the solved ones give the same bits as a run fed only those (the
+// vessel moves on the straight segment between solved samples either way). Times are binary
+// fractions, so that "0.25 s since the last solve" is exact.
+TEST(VesselLockstep, SamplesWithinTheSolveIntervalAreHeldAndTheSolvesMatchACoarseRun) {
+  constexpr double kRate = 16.0;  // [Hz] the source
+  VesselLockstepOptions decimated;
+  decimated.solve_interval = 0.25;
+  VesselLockstep fast(fourLegVessel(10.0), options(), decimated), coarse(fourLegVessel(10.0), options());
+  auto pose = [](double t) { return surged(0.5 * std::sin(0.6 * t), 2.0 * std::sin(0.3 * t)); };
+  long held = 0, solved = 0;
+  for (int i = 0; i <= 48; ++i) {
+    const double t = i / kRate;
+    const VesselWrench before = fast.wrench();
+    const auto r = fast.onSample(t, pose(t));
+    if (i % 4 != 0) {
+      EXPECT_EQ(r.outcome, VesselLockstep::Outcome::Held) << t;
+      EXPECT_FALSE(r.publish);
+      EXPECT_EQ(fast.wrench().force_world, before.force_world);  // the last solve's
+      EXPECT_EQ(fast.lastTime(), t);
+      ++held;
+      continue;
+    }
+    EXPECT_EQ(r.outcome, i == 0 ? VesselLockstep::Outcome::Started : VesselLockstep::Outcome::Advanced) << t;
+    ++solved;
+    coarse.onSample(t, pose(t));
+    EXPECT_EQ(fast.lastSolvedTime(), t);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(fast.wrench().force_world[c], coarse.wrench().force_world[c]) << t;
+      EXPECT_EQ(fast.wrench().moment_world[c], coarse.wrench().moment_world[c]) << t;
+    }
+  }
+  EXPECT_EQ(fast.held(), held);
+  EXPECT_EQ(solved, 13);
+  // Held samples still pass the checks: a stamp back, a bad pose are dropped, not held.
+  EXPECT_EQ(fast.onSample(3.0 - 1.0 / kRate, pose(3.0)).outcome, VesselLockstep::Outcome::Dropped);
+  RigidPose bad = pose(3.0625);
+  bad.position.x() = std::nan("");
+  EXPECT_EQ(fast.onSample(3.0625, bad).outcome, VesselLockstep::Outcome::Dropped);
+  EXPECT_EQ(fast.held(), held);
+  EXPECT_EQ(fast.dropped(), 2);
+}
+
 TEST(VesselLockstep, OptionsNameTheField) {
   VesselLockstepOptions lo;
   lo.threads = 0;
   EXPECT_NE(lo.validate().find("threads"), std::string::npos);
+  lo = VesselLockstepOptions();
+  lo.solve_interval = -0.1;
+  EXPECT_NE(lo.validate().find("solve_interval = -0.1"), std::string::npos);
   lo = VesselLockstepOptions();
   lo.loop_back = -1;
   EXPECT_NE(lo.validate().find("loop_back"), std::string::npos);

@@ -22,6 +22,8 @@ std::string VesselLockstepOptions::validate() const {
   if (jumps_to_reinit < 1) return "jumps_to_reinit = " + std::to_string(jumps_to_reinit) + ": must be >= 1";
   if (failures_to_reinit < 1) return "failures_to_reinit = " + std::to_string(failures_to_reinit) + ": must be >= 1";
   if (threads < 1) return "threads = " + std::to_string(threads) + ": must be >= 1";
+  if (!(std::isfinite(solve_interval) && solve_interval >= 0.0))
+    return "solve_interval = " + num(solve_interval) + " s: must be finite and >= 0";
   return {};
 }
 
@@ -33,6 +35,7 @@ const char* toString(VesselLockstep::Outcome o) {
     case VesselLockstep::Outcome::Reinitialised: return "reinitialised";
     case VesselLockstep::Outcome::Failed: return "failed, last good state kept";
     case VesselLockstep::Outcome::RecoveredFailure: return "recovered from a failure";
+    case VesselLockstep::Outcome::Held: return "held (answered from the last solve)";
     case VesselLockstep::Outcome::Dropped: return "dropped";
   }
   return "?";
@@ -65,6 +68,7 @@ std::vector<StaticResult> VesselLockstep::lines() const {
 
 void VesselLockstep::remember(double t, const RigidPose& pose, const BodyTwist* twist) {
   last_t_ = t;
+  accepted_t_ = t;
   last_pose_ = pose;
   last_has_twist_ = twist != nullptr;
   last_motion_ = twist ? motionFromBodyTwist(pose, *twist) : RigidMotion{pose, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
@@ -124,20 +128,20 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
   RigidPose pose = pose_in;
   pose.orientation.normalize();
   if (!started_) return start(t, pose, twist, Outcome::Started, "");
-  if (t <= last_t_) {
-    if (last_t_ - t > options_.loop_back)
-      return withReason(start(t, pose, twist, Outcome::Reinitialised, "time went back by " + num(last_t_ - t) + " s (bag loop)"),
+  if (t <= accepted_t_) {
+    if (accepted_t_ - t > options_.loop_back)
+      return withReason(start(t, pose, twist, Outcome::Reinitialised, "time went back by " + num(accepted_t_ - t) + " s (bag loop)"),
                         Reason::LoopBack);
     ++dropped_;
-    r.message = "time " + num(t) + " s not after the last sample's " + num(last_t_) + " s";
-    r.reason = t == last_t_ ? Reason::SameStamp : Reason::StampBack;
+    r.message = "time " + num(t) + " s not after the last sample's " + num(accepted_t_) + " s";
+    r.reason = t == accepted_t_ ? Reason::SameStamp : Reason::StampBack;
     return r;
   }
-  const double gap = t - last_t_;
+  const double gap = t - accepted_t_;
   if (options_.max_gap > 0.0 && gap > options_.max_gap)
     return withReason(start(t, pose, twist, Outcome::Reinitialised, "gap of " + num(gap) + " s since the last sample"),
                       Reason::Gap);
-  const double speed = (pose.position - last_pose_.position).norm() / gap;
+  const double speed = (pose.position - last_pose_.position).norm() / (t - last_t_);
   if (options_.max_speed > 0.0 && speed > options_.max_speed) {
     if (++jumps_ >= options_.jumps_to_reinit)
       return withReason(start(t, pose, twist, Outcome::Reinitialised, "the vessel jumped"), Reason::Jumps);
@@ -147,6 +151,12 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
     return r;
   }
   jumps_ = 0;
+  if (t - last_t_ < options_.solve_interval) {
+    accepted_t_ = t;
+    ++held_;
+    r.outcome = Outcome::Held;
+    return r;
+  }
   // Both ends with a twist: the Hermite path through both poses and velocities; else pose-only.
   const RigidSegment seg = (last_has_twist_ && twist)
                                ? RigidSegment(last_t_ - t0_, last_motion_, t - t0_, motionFromBodyTwist(pose, *twist))
@@ -165,6 +175,7 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
     last_pose_ = last_motion_.pose;
     last_has_twist_ = last_has_twist_ && twist != nullptr;
     last_t_ = t0_ + ts;
+    accepted_t_ = last_t_;
     r.outcome = Outcome::Failed;
     r.reason = Reason::SolverFailed;
     r.publish = true;

@@ -27,7 +27,13 @@
 //    step) and published for this sample (Failed, the failed line named in the message); the
 //    next sample continues from it, the vessel moving on from where it was at that step.
 //    failures_to_reinit failures in a row: every line restarted from statics at the sample's
-//    pose (RecoveredFailure).
+//    pose (RecoveredFailure);
+//  * with solve_interval > 0, an accepted sample less than solve_interval after the last solved
+//    one is held (Outcome::Held, counted): not a solver step, answered with the last solve's
+//    state (the wrench of solver time lastSolvedTime() <= t); the next sample at least
+//    solve_interval after the last solved one is solved, the vessel moving on RigidSegment from
+//    the last solved sample to it (the held poses between are not on the path). For sources
+//    faster than the solver can follow (a 1 kHz simulator: docs/ros_interface.md).
 #pragma once
 
 #include <functional>
@@ -54,13 +60,16 @@ struct VesselLockstepOptions {
   int failures_to_reinit = 3;            ///< this many failed samples in a row restart from statics
   bool restart_failed_lines = true;      ///< a failed line's group restarts alone (else the step fails)
   int threads = 1;                       ///< threads that advance the lines (>= 1; same bits for any)
+  /// [s] >= 0: samples closer than this to the last solved one are held, not solved (0: every
+  /// accepted sample is solved). The problem's dt is the natural choice for a fast source.
+  double solve_interval = 0.0;
   /// Empty when valid, else the field, value and constraint.
   std::string validate() const;
 };
 
 class VesselLockstep {
  public:
-  enum class Outcome { Started, Advanced, LinesRestarted, Reinitialised, Failed, RecoveredFailure, Dropped };
+  enum class Outcome { Started, Advanced, LinesRestarted, Reinitialised, Failed, RecoveredFailure, Held, Dropped };
   /// Why a sample was dropped, the run restarted or failed (counted apart in the node's diagnostics).
   enum class Reason {
     None, NonFinitePosition, NonFiniteOrientation, NonUnitOrientation, BadTwist, NonFiniteTime, SameStamp, StampBack, Jump,
@@ -69,7 +78,8 @@ class VesselLockstep {
   struct Result {
     Outcome outcome = Outcome::Dropped;
     Reason reason = Reason::None;
-    bool publish = false;     ///< a new state (wrench, lines) is available
+    /// a new state (wrench, lines) is available; false for Held (the last solve's state answers)
+    bool publish = false;
     std::string message;      ///< what happened; empty for a plain Advanced
     /// LinesRestarted: the lines (indices, line order) that failed and restarted from statics,
     /// with the other lines of their groups.
@@ -89,8 +99,10 @@ class VesselLockstep {
   Result reset();
 
   bool started() const { return started_; }
-  /// Time of the last accepted sample [s] and the solver's time (0 at the start) [s].
-  double lastTime() const { return last_t_; }
+  /// Time of the last accepted sample (solved or held) [s], of the last solved one [s], and the
+  /// solver's time (0 at the start) [s].
+  double lastTime() const { return accepted_t_; }
+  double lastSolvedTime() const { return last_t_; }
   double solverTime() const;
   const SystemDynamics& dynamics() const { return *sim_; }
   const SystemProblem& system() const { return system_; }
@@ -110,6 +122,8 @@ class VesselLockstep {
   VesselWrench wrench() const { return sim_->vesselWrench(); }
   std::vector<StaticResult> lines() const;
   long dropped() const { return dropped_; }
+  /// Samples held (solve_interval) since construction.
+  long held() const { return held_; }
   /// TEST HOOK (failure injection; tests only): SystemDynamics::setFailureInjection on the run,
   /// kept across restarts; `t1` is solver time (0 at the run's start).
   void setFailureInjection(std::function<bool(std::size_t line, double t1)> fail);
@@ -128,13 +142,15 @@ class VesselLockstep {
   std::function<bool(std::size_t, double)> fail_hook_;
   bool pristine_ = true;  ///< sim_ is the file pose's static start, not advanced
   bool started_ = false;
-  double t0_ = 0.0, last_t_ = 0.0;
+  double t0_ = 0.0, last_t_ = 0.0;  ///< first sample of the run, last solved sample [s]
+  double accepted_t_ = 0.0;         ///< last accepted sample, solved or held [s]
   RigidPose last_pose_;
   bool last_has_twist_ = false;
   RigidMotion last_motion_;  ///< the last sample's pose and world velocities (when it had a twist)
   int jumps_ = 0;
   int failures_ = 0;  ///< consecutive failed samples
   long dropped_ = 0;
+  long held_ = 0;
 };
 
 const char* toString(VesselLockstep::Outcome o);
