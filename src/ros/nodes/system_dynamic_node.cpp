@@ -235,6 +235,7 @@ void SystemDynamicNode::handle(const core::VesselLockstep::Result& r, const ros:
     case O::LinesRestarted:
       ROS_ERROR("mooring_dynamics: ROS time %.6f: %s", stamp.toSec(), monitor_->lastEvent().c_str());
       break;
+    case O::Held:  // not produced here: no vessel lockstep
     case O::Advanced:
       break;
   }

@@ -43,6 +43,9 @@ void VesselMonitor::add(Counts& a, const Counts& b) {
   a.dropped += b.dropped;
   a.restarts += b.restarts;
   a.failures += b.failures;
+  a.held += b.held;
+  a.answered += b.answered;
+  a.thinned += b.thinned;
   a.sim += b.sim;
   a.wall += b.wall;
 }
@@ -107,6 +110,7 @@ void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, doub
       last_event_ = "dropped: " + r.message;
       break;
     case O::Advanced: window_.sim += advanced; break;
+    case O::Held: ++window_.held; break;
     case O::LinesRestarted: {
       // Some lines (a group) failed and restarted alone from statics; the others went on.
       window_.sim += advanced;
@@ -204,6 +208,9 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
                                       : "waiting for motion (none received yet)");
   if (w.dropped > 0) warnings.push_back(std::to_string(w.dropped) + " sample(s) dropped: " + last_drop_);
   if (w.restarts > 0) warnings.push_back(std::to_string(w.restarts) + " restart(s): " + last_restart_);
+  if (w.thinned > 0)
+    warnings.push_back(std::to_string(w.thinned) + " sample(s) thinned: the solver fell behind (lag " +
+                       fmt(solver_lag_, "%.3g") + " s)");
   if (requests_rejected_ > 0)
     warnings.push_back(std::to_string(requests_rejected_) + " service request(s) rejected: " + last_request_);
   requests_rejected_ = 0;
@@ -229,6 +236,13 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
   kv(s, "states published (window / total)", std::to_string(w.published) + " / " + std::to_string(total_.published));
   kv(s, "samples dropped (window / total)", std::to_string(w.dropped) + " / " + std::to_string(total_.dropped));
   kv(s, "samples dropped", std::to_string(total_.dropped));
+  if (solver_lag_ >= 0.0) {
+    kv(s, "poses answered (window / total)", std::to_string(w.answered) + " / " + std::to_string(total_.answered));
+    kv(s, "poses held, not solved (window / total)", std::to_string(w.held) + " / " + std::to_string(total_.held));
+    kv(s, "samples thinned, solver behind (window / total)",
+       std::to_string(w.thinned) + " / " + std::to_string(total_.thinned));
+    kv(s, "solver lag [s]", fmt(solver_lag_, "%.3g"));
+  }
   kv(s, "restarts (window / total)", std::to_string(w.restarts) + " / " + std::to_string(total_.restarts));
   kv(s, "line failures (window / total)", std::to_string(w.failures) + " / " + std::to_string(total_.failures));
   tally_.closeWindow(s.values);

@@ -44,7 +44,11 @@ bool paramsNameVesselFile(const ros::NodeHandle& pnh) {
 
 double VesselNode::wallNow() const { return (ros::WallTime::now() - wall0_).toSec(); }
 
-VesselNode::~VesselNode() = default;
+VesselNode::~VesselNode() { worker_.reset(); }
+
+void VesselNode::drainSolver() {
+  if (worker_) worker_->drain();
+}
 
 VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     : nh_(nh), pnh_(pnh), wall0_(ros::WallTime::now()) {
@@ -89,6 +93,11 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   lo.jumps_to_reinit = intParam(pnh_, "jumps_to_reinit", lo.jumps_to_reinit, 1, "must be >= 1");
   lo.failures_to_reinit = intParam(pnh_, "failures_to_reinit", lo.failures_to_reinit, 1, "must be >= 1");
   pnh_.param<bool>("restart_failed_lines", lo.restart_failed_lines, lo.restart_failed_lines);
+  lo.solve_interval = doubleParam(pnh_, "solve_interval", 0.0, [](double v) { return v >= 0.0; },
+                                  "must be >= 0 [s] (0: every pose solved in lockstep)");
+  const double max_solver_lag = doubleParam(pnh_, "max_solver_lag", 1.0, [&lo](double v) { return v > lo.solve_interval; },
+                                            "must be > ~solve_interval [s]");
+  loop_back_ = lo.loop_back;
 
   VesselMonitorOptions mo;
   mo.motion_timeout = doubleParam(pnh_, "motion_timeout", mo.motion_timeout, [](double v) { return v > 0.0; },
@@ -156,6 +165,8 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   wrench_pub_ = pnh_.advertise<geometry_msgs::WrenchStamped>("wrench", 100, /*latch=*/true);
   wrench_world_pub_ = pnh_.advertise<geometry_msgs::WrenchStamped>("wrench_world", 100, /*latch=*/true);
   const core::VesselWrench w0wrench = lockstep_->wrench();
+  answer_wrench_ = w0wrench;
+  snapshotForDiagnostics();
   fairlead_pubs_.resize(system_.lines.size());
   for (std::size_t i = 0; i < system_.lines.size(); ++i)
     state_pubs_.push_back(pnh_.advertise<CableState>("lines/" + topic_names_[i] + "/cable_state", 100, true));
@@ -171,10 +182,12 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   winch_srv_ = pnh_.advertiseService("winch", &VesselNode::onWinch, this);
   std::string input;
   if (motion_source_ == "pose") {
-    motion_sub_ = pnh_.subscribe("vessel_pose", 100, &VesselNode::onPose, this);
+    // TCP_NODELAY: a pose is sent at once, not held back to share a packet (Nagle), which at
+    // hundreds of poses a second adds milliseconds to some of them.
+    motion_sub_ = pnh_.subscribe("vessel_pose", 100, &VesselNode::onPose, this, ros::TransportHints().tcpNoDelay());
     input = motion_sub_.getTopic();
   } else if (motion_source_ == "odometry") {
-    motion_sub_ = pnh_.subscribe("vessel_odom", 100, &VesselNode::onOdometry, this);
+    motion_sub_ = pnh_.subscribe("vessel_odom", 100, &VesselNode::onOdometry, this, ros::TransportHints().tcpNoDelay());
     input = motion_sub_.getTopic() + (use_twist_ ? " (pose and twist: Hermite path through both)"
                                                   : " (pose only, ~use_twist false: velocities from the pose sequence)");
   } else if (motion_source_ == "gnss") {
@@ -186,11 +199,17 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     gnss_ = std::make_unique<GnssInput>(
         pnh_, go, system_.vessel.pose, Eigen::Vector2d::Zero(),
         [this](const ros::Time& stamp, const core::RigidPose& p) {
-          monitor_->onMotionReceived(wallNow());
+          {
+            std::lock_guard<std::mutex> l(monitor_mutex_);
+            monitor_->onMotionReceived(wallNow());
+          }
           onWorldPose(stamp, p, "fix");
         },
         [this](const std::string& message) {
-          monitor_->onMotionReceived(wallNow());
+          {
+            std::lock_guard<std::mutex> l(monitor_mutex_);
+            monitor_->onMotionReceived(wallNow());
+          }
           reject(message, vessel_keys::kGnssRejected);
         });
     input = gnss_->topics();
@@ -200,6 +219,24 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   }
   diag_timer_ = nh_.createWallTimer(ros::WallDuration(diag_period), &VesselNode::onDiagnosticsTimer, this);
   if (publish_fairlead_frames_) publishAnchorFrames();
+  if (lo.solve_interval > 0.0) {
+    monitor_->onSolverLag(0.0);
+    worker_ = std::make_unique<SampleWorker>(
+        [this](const SampleWorker::Sample& q) {
+          std::lock_guard<std::mutex> l(solver_mutex_);
+          solveSample(q.stamp, q.pose, q.field, q.has_twist ? &q.twist : nullptr);
+        },
+        [this](long n, double lag) {
+          std::lock_guard<std::mutex> l(monitor_mutex_);
+          monitor_->onThinned(n);
+          monitor_->onSolverLag(lag);
+          ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: the solver is %.3f s behind the poses: %ld pose(s) "
+                            "thinned (answered, not solved; ~max_solver_lag)", lag, n);
+        },
+        max_solver_lag);
+    input += "; decimated: a solve every " + formatNumber(lo.solve_interval) +
+             " s on a solver thread, every pose answered at once from the last solve (~solve_interval)";
+  }
 
   ROS_INFO("mooring_dynamics: moored vessel, dynamic (lockstep) mode: \"%s\" from %s: %zu lines, %zu points; statics "
            "at the file's pose in %.0f ms; dt %g s; %d thread(s); vessel motion from %s; world frame %s, body frame %s",
@@ -251,12 +288,16 @@ void VesselNode::pollTf(const ros::WallTimerEvent&) {
 
 void VesselNode::reject(const std::string& message, const char* key) {
   ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: vessel pose dropped: %s; state kept", message.c_str());
+  std::lock_guard<std::mutex> l(monitor_mutex_);
   monitor_->onInputRejected(wallNow(), message, key);
 }
 
 void VesselNode::onMotion(const ros::Time& stamp, const std::string& frame, const geometry_msgs::Pose& pose_in,
                           const std::string& field, const core::BodyTwist* twist) {
-  monitor_->onMotionReceived(wallNow());
+  {
+    std::lock_guard<std::mutex> l(monitor_mutex_);
+    monitor_->onMotionReceived(wallNow());
+  }
   if (stamp.isZero()) {
     reject("header.stamp = 0: lockstep mode needs stamped poses", vessel_keys::kZeroStamp);
     return;
@@ -282,6 +323,45 @@ void VesselNode::onMotion(const ros::Time& stamp, const std::string& frame, cons
 
 void VesselNode::onWorldPose(const ros::Time& stamp, const core::RigidPose& rp, const std::string& field,
                              const core::BodyTwist* twist) {
+  if (worker_) {
+    answerAndQueue(stamp, rp, field, twist);
+    return;
+  }
+  std::lock_guard<std::mutex> l(solver_mutex_);
+  solveSample(stamp, rp, field, twist);
+}
+
+void VesselNode::answerAndQueue(const ros::Time& stamp, const core::RigidPose& rp, const std::string& field,
+                                const core::BodyTwist* twist) {
+  // Answered unless malformed or out of order (the solver thread's lockstep counts those as dropped).
+  const bool valid = rp.validate(field).empty() && (!twist || twist->validate("twist").empty());
+  bool answered = false;
+  {
+    std::lock_guard<std::mutex> l(answer_mutex_);
+    const bool in_order = !answered_any_ || stamp > last_answered_ || (last_answered_ - stamp).toSec() > loop_back_;
+    if (valid && in_order) {
+      wrench_pub_.publish(toBodyWrench(answer_wrench_, vessel_frame_, stamp));
+      wrench_world_pub_.publish(toWorldWrench(answer_wrench_, frame_id_, stamp));
+      answered_any_ = true;
+      last_answered_ = stamp;
+      answered = true;
+    }
+  }
+  if (answered) {
+    std::lock_guard<std::mutex> l(monitor_mutex_);
+    monitor_->onAnswered();
+  }
+  SampleWorker::Sample q;
+  q.stamp = stamp;
+  q.pose = rp;
+  q.field = field;
+  q.has_twist = twist != nullptr;
+  if (twist) q.twist = *twist;
+  worker_->push(std::move(q));
+}
+
+void VesselNode::solveSample(const ros::Time& stamp, const core::RigidPose& rp, const std::string& field,
+                             const core::BodyTwist* twist) {
   // The epoch is the first stamp of a usable pose; VesselLockstep checks (and counts) every sample.
   if (!have_epoch_ && rp.validate(field).empty()) {
     have_epoch_ = true;
@@ -301,6 +381,13 @@ void VesselNode::onWorldPose(const ros::Time& stamp, const core::RigidPose& rp, 
   handle(r, stamp, spent, advanced ? lockstep_->solverTime() - before : 0.0);
 }
 
+void VesselNode::snapshotForDiagnostics() {
+  diag_events_ = lockstep_->dynamics().lineEvents();
+  diag_lengths_ = lockstep_->lineLengths();
+  diag_rates_.assign(system_.lines.size(), 0.0);
+  for (std::size_t i = 0; i < system_.lines.size(); ++i) diag_rates_[i] = lockstep_->dynamics().lineWinchRate(i);
+}
+
 void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& stamp, double wall_spent,
                         double advanced) {
   using O = core::VesselLockstep::Outcome;
@@ -312,11 +399,21 @@ void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& 
       top.push_back(line.topTension());
       peaks.push_back(core::tensionPeak(system_.materials, system_.lines[i].segments, line.nodes));
     }
-  monitor_->onResult(r, wallNow(), wall_spent, advanced, r.publish ? &top : nullptr, lockstep_->solverTime(),
-                     r.publish ? &peaks : nullptr);
   std::vector<long> fallback(system_.lines.size(), 0);
   for (std::size_t i = 0; i < fallback.size(); ++i) fallback[i] = lockstep_->dynamics().lineFallbackSteps(i);
-  monitor_->onFallbackSteps(fallback);
+  std::string last_event;
+  {
+    std::lock_guard<std::mutex> l(monitor_mutex_);
+    monitor_->onResult(r, wallNow(), wall_spent, advanced, r.publish ? &top : nullptr, lockstep_->solverTime(),
+                       r.publish ? &peaks : nullptr);
+    monitor_->onFallbackSteps(fallback);
+    last_event = monitor_->lastEvent();
+    if (r.outcome != core::VesselLockstep::Outcome::Held) snapshotForDiagnostics();
+    if (worker_) {
+      std::lock_guard<std::mutex> a(answer_mutex_);
+      if (answered_any_) monitor_->onSolverLag(std::max(0.0, (last_answered_ - stamp).toSec()));
+    }
+  }
   const double ms = wall_spent * 1000.0;
   switch (r.outcome) {
     case O::Dropped:
@@ -333,8 +430,10 @@ void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& 
     case O::Failed:  // the last good state is published again, converged false (not this stamp's)
     case O::RecoveredFailure:
     case O::LinesRestarted:
-      ROS_ERROR("mooring_dynamics: stamp %.6f: %s", stamp.toSec(), monitor_->lastEvent().c_str());
+      ROS_ERROR("mooring_dynamics: stamp %.6f: %s", stamp.toSec(), last_event.c_str());
       break;
+    case O::Held:
+      return;  // answered from the last solve (decimated mode)
     case O::Advanced:
       ROS_DEBUG("mooring_dynamics: stamp %.6f: solver t = %.3f s, %.1f ms", stamp.toSec(), lockstep_->solverTime(), ms);
       break;
@@ -345,8 +444,13 @@ void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& 
 
 void VesselNode::publish(const ros::Time& stamp) {
   const core::VesselWrench w = lockstep_->wrench();
-  wrench_pub_.publish(toBodyWrench(w, vessel_frame_, stamp));
-  wrench_world_pub_.publish(toWorldWrench(w, frame_id_, stamp));
+  if (worker_) {  // decimated: the poses' answers carry it from now on
+    std::lock_guard<std::mutex> l(answer_mutex_);
+    answer_wrench_ = w;
+  } else {
+    wrench_pub_.publish(toBodyWrench(w, vessel_frame_, stamp));
+    wrench_world_pub_.publish(toWorldWrench(w, frame_id_, stamp));
+  }
   const core::RigidPose& pose = lockstep_->dynamics().vesselPose();
   for (const core::FairleadForce& f : w.fairleads)
     if (f.line < fairlead_pubs_.size() && fairlead_pubs_[f.line])
@@ -429,6 +533,9 @@ double fileLength(const core::SystemLine& l) {
 }  // namespace
 
 void VesselNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
+  // Not on solver_mutex_: the line events and lengths come from the last solve's snapshot, so
+  // that the timer never waits for a solve in progress (decimated mode answers poses meanwhile).
+  std::unique_lock<std::mutex> monitor(monitor_mutex_);
   const double now = wallNow();
   if (monitor_->silent(now) && monitor_->everReceived())
     ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: no vessel pose for %.1f s; last good state kept (latched)",
@@ -437,18 +544,15 @@ void VesselNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   if (gnss_ && !statuses.empty())
     for (const auto& kv : gnss_->values()) statuses.front().values.push_back(kv);
   // Line events (a line let go or parted): counted, the last one shown, and a warning.
-  const std::vector<core::LineEventRecord> events = lockstep_->dynamics().lineEvents();
+  const std::vector<core::LineEventRecord>& events = diag_events_;
   if (!statuses.empty()) {
     VesselMonitor::Status& o = statuses.front();
     o.values.emplace_back("line events", std::to_string(events.size()));
     // Lines a winch paid out or hauls in: their length and rate.
-    const std::vector<double> lengths = lockstep_->lineLengths();
-    for (std::size_t i = 0; i < lengths.size(); ++i)
-      if (lengths[i] != fileLength(system_.lines[i]) ||
-          lockstep_->dynamics().lineWinchRate(i) != 0.0)
+    for (std::size_t i = 0; i < diag_lengths_.size() && i < diag_rates_.size(); ++i)
+      if (diag_lengths_[i] != fileLength(system_.lines[i]) || diag_rates_[i] != 0.0)
         o.values.emplace_back("line length " + system_.lines[i].name,
-                              formatNumber(lengths[i]) + " m, winch " +
-                                  formatNumber(lockstep_->dynamics().lineWinchRate(i)) + " m/s");
+                              formatNumber(diag_lengths_[i]) + " m, winch " + formatNumber(diag_rates_[i]) + " m/s");
     if (!events.empty()) {
       o.values.emplace_back("last line event", core::lineEventText(events.back()));
       if (o.level < VesselMonitor::WARN) {
@@ -457,6 +561,7 @@ void VesselNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
       }
     }
   }
+  monitor.unlock();
   diag_pub_.publish(toDiagnostics(statuses, ros::this_node::getName(), "vessel lockstep", system_.name, ros::Time::now()));
 }
 
@@ -469,6 +574,7 @@ bool VesselNode::onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res
     res.message = "end = \"" + req.end + "\": must be top or anchor";
     return true;
   }
+  std::lock_guard<std::mutex> l(solver_mutex_);
   const std::string err = lockstep_->releaseLine(req.line, end, "released by ~release");
   res.success = err.empty();
   res.message = err.empty() ? "line " + req.line + ": " + req.end + " let go at solver time " +
@@ -484,6 +590,7 @@ bool VesselNode::onWinch(Winch::Request& req, Winch::Response& res) {
     res.message = "target_length = " + formatNumber(req.target_length) + ": must be > 0 [m], or 0 for none";
     return true;
   }
+  std::lock_guard<std::mutex> l(solver_mutex_);
   std::string note;
   const double target = req.target_length > 0.0 ? req.target_length : std::numeric_limits<double>::quiet_NaN();
   const std::string err = lockstep_->winchLine(req.line, req.rate, target, note);
@@ -497,6 +604,7 @@ bool VesselNode::onWinch(Winch::Request& req, Winch::Response& res) {
 }
 
 bool VesselNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  std::lock_guard<std::mutex> l(solver_mutex_);
   const ros::WallTime w0 = ros::WallTime::now();
   const core::VesselLockstep::Result r = lockstep_->reset();
   if (!r.publish) {
@@ -521,6 +629,7 @@ bool VesselNode::onSolveStatic(VesselStatics::Request& req, VesselStatics::Respo
     res.success = false;
     res.message = "invalid request: " + q.error;
     ROS_WARN("mooring_dynamics: ~solve_static rejected: %s", res.message.c_str());
+    std::lock_guard<std::mutex> l(monitor_mutex_);
     monitor_->onRequestRejected(wallNow(), "~solve_static: " + res.message);
     return true;
   }
@@ -541,6 +650,7 @@ bool VesselNode::onSolveStatic(VesselStatics::Request& req, VesselStatics::Respo
     res = VesselStatics::Response();
     res.success = false;
     res.message = q.summary + ": " + e.what();
+    std::lock_guard<std::mutex> l(monitor_mutex_);
     monitor_->onRequestRejected(wallNow(), "~solve_static: " + res.message);
   }
   const double ms = (ros::WallTime::now() - t0).toSec() * 1000.0;

@@ -97,6 +97,12 @@ class VesselMonitor {
   /// per line and, over all lines, as "fallback steps: 3 on bow_port_2" (a value, not a warning:
   /// a storm's slack-and-snap steps are expected; docs/method.md "Slack and snap").
   void onFallbackSteps(const std::vector<long>& per_line_total);
+  /// ~solve_interval > 0 (decimated mode, docs/ros_interface.md): a pose answered at once from
+  /// the last solve; `thinned` samples skipped because the solver was behind; the solver's lag
+  /// (newest answered stamp less the last solved one) [s].
+  void onAnswered() { ++window_.answered; }
+  void onThinned(long thinned) { window_.thinned += thinned; }
+  void onSolverLag(double lag) { solver_lag_ = lag; }
 
   /// Overall status then one per line, for the window since the last call; starts a new window.
   std::vector<Status> summarise(double wall_now);
@@ -114,6 +120,7 @@ class VesselMonitor {
  private:
   struct Counts {
     long samples = 0, published = 0, dropped = 0, restarts = 0, failures = 0;
+    long held = 0, answered = 0, thinned = 0;  ///< decimated mode (onAnswered, onThinned)
     double sim = 0.0, wall = 0.0;  ///< solver time advanced, wall time spent [s]
   };
   static void add(Counts& a, const Counts& b);
@@ -134,6 +141,7 @@ class VesselMonitor {
   std::vector<std::string> line_last_failure_;
   std::vector<double> top_tension_, max_top_tension_;
   bool have_state_ = false;
+  double solver_lag_ = -1.0;  ///< [s], < 0: not in decimated mode
   bool have_peaks_ = false;           ///< max_tension_ and utilization_ hold a published state
   std::vector<double> max_tension_;   ///< largest tension along each line in that state [N]
   std::vector<double> utilization_;   ///< its utilization (< 0: no MBL given) [-]

@@ -18,6 +18,12 @@
 //   ~dt, ~start_tolerance, ~start_angle_tolerance, ~loop_back, ~max_gap, ~max_speed, ~jumps_to_reinit
 //   ~tf_timeout, ~tf_poll_rate, ~motion_timeout, ~diagnostics_period, ~min_real_time_factor
 //   ~marker_scale, ~publish_fairlead_frames, ~frame_prefix, ~publish_vessel_frame
+//   ~solve_interval   [s] 0 (default): every pose solved in the callback, in lockstep, bit for bit
+//                     as cable_sim; > 0 (a fast simulator): decimated mode, each pose answered at
+//                     once on ~wrench and ~wrench_world (its stamp) with the last solve's wrench,
+//                     a pose solved on a solver thread when solve_interval has passed since the
+//                     last solved one (core::VesselLockstepOptions::solve_interval)
+//   ~max_solver_lag   [s] decimated mode: a solver further behind skips to the newest pose
 // Publications: ~wrench, ~wrench_world, ~lines/<line>/cable_state, ~lines/<line>/fairlead_wrench,
 // ~markers (when subscribed), /diagnostics, /tf (optional fairlead and vessel frames), /tf_static
 // (anchors, with the fairlead frames). Services: ~reset (std_srvs/Trigger), ~release (ReleaseLine), ~solve_static
@@ -25,6 +31,7 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -46,6 +53,7 @@
 #include "mooring_dynamics/core/model/system.hpp"
 #include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
 #include "mooring_dynamics/ros/nodes/gnss_input.hpp"
+#include "mooring_dynamics/ros/nodes/sample_worker.hpp"
 #include "mooring_dynamics/ros/publish/markers.hpp"
 #include "mooring_dynamics/ros/nodes/vessel_monitor.hpp"
 
@@ -77,6 +85,10 @@ class VesselNode {
   /// ~release: let go an end of a line (ReleaseLine).
   bool onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res);
 
+  /// Decimated mode (~solve_interval > 0): blocks until every pose received so far is solved or
+  /// held (tests). No-op otherwise.
+  void drainSolver();
+
   const core::VesselLockstep& lockstep() const { return *lockstep_; }
   const VesselMonitor& monitor() const { return *monitor_; }
 
@@ -86,8 +98,16 @@ class VesselNode {
   void pollTf(const ros::WallTimerEvent&);
   void onDiagnosticsTimer(const ros::WallTimerEvent&);
   void reject(const std::string& message, const char* key);
+  /// The lockstep step of one pose and its outputs (on the solver thread in decimated mode).
+  void solveSample(const ros::Time& stamp, const core::RigidPose& pose, const std::string& field,
+                   const core::BodyTwist* twist);
+  /// Decimated mode: answer the pose at once from the last solve, queue it for the solver.
+  void answerAndQueue(const ros::Time& stamp, const core::RigidPose& pose, const std::string& field,
+                      const core::BodyTwist* twist);
   void handle(const core::VesselLockstep::Result& r, const ros::Time& stamp, double wall_spent, double advanced);
   void publish(const ros::Time& stamp);
+  /// Line events, lengths and winch rates for the diagnostics (under both mutexes).
+  void snapshotForDiagnostics();
   void publishMarkersAndFrames(const ros::Time& stamp);
   void publishAnchorFrames();
   double wallNow() const;
@@ -123,6 +143,19 @@ class VesselNode {
   bool have_output_ = false;
   ros::Time last_stamp_;     ///< stamp of the last published state
   bool failed_sample_ = false;  ///< the sample being published failed: the last good state, converged false
+
+  // Threads (decimated mode; uncontended otherwise). Lock order: solver_mutex_, then
+  // monitor_mutex_, then answer_mutex_.
+  std::mutex solver_mutex_;   ///< lockstep_ and the state above (solver thread, services, diagnostics)
+  std::mutex monitor_mutex_;  ///< monitor_ and the diag_ snapshot
+  std::vector<core::LineEventRecord> diag_events_;  ///< as of the last solve (snapshotForDiagnostics)
+  std::vector<double> diag_lengths_, diag_rates_;   ///< [m], [m/s] per line, as of the last solve
+  std::mutex answer_mutex_;   ///< the fields below
+  double loop_back_ = 1.0;    ///< [s] as lockstep's: a stamp back by more is a bag loop, answered
+  core::VesselWrench answer_wrench_;  ///< the last solve's wrench: every pose's answer
+  bool answered_any_ = false;
+  ros::Time last_answered_;
+  std::unique_ptr<SampleWorker> worker_;  ///< decimated mode; last member: stopped first
 };
 
 /// True when ~problem_file names a system file with a vessel whose points carry lines.

@@ -1,0 +1,66 @@
+// The solver thread of the vessel node's decimated mode (~solve_interval > 0; docs/ros_interface.md,
+// "A fast vessel simulator"). The receiving thread answers each pose at once from the last solve
+// and pushes it here; this thread hands the samples to `solve` in arrival order, so that the
+// lockstep's checks and counts see every one. When the oldest waiting sample is more than
+// `max_lag` seconds (of stamps) older than the newest, the solver has fallen behind: only the
+// newest is handed on, the others are counted through `thinned` (never lost silently).
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <ros/time.h>
+
+#include "mooring_dynamics/core/model/rigid_pose.hpp"
+
+namespace mooring_dynamics {
+namespace ros_bridge {
+
+class SampleWorker {
+ public:
+  struct Sample {
+    ros::Time stamp;
+    core::RigidPose pose;  ///< world frame (~frame_id)
+    std::string field;     ///< message field of the pose, for messages
+    bool has_twist = false;
+    core::BodyTwist twist;
+  };
+  using Solve = std::function<void(const Sample&)>;
+  /// `count` samples skipped, the lag [s] of stamps that made them so.
+  using Thinned = std::function<void(long count, double lag)>;
+
+  /// Starts the thread. `max_lag` [s] > 0.
+  SampleWorker(Solve solve, Thinned thinned, double max_lag);
+  /// Stops the thread after the sample in hand (waiting samples are discarded) and joins it.
+  ~SampleWorker();
+  SampleWorker(const SampleWorker&) = delete;
+  SampleWorker& operator=(const SampleWorker&) = delete;
+
+  /// Nice value of the solver thread (Linux; the receiving thread keeps the process's).
+  static constexpr int kNice = 10;
+
+  void push(Sample s);
+  /// Samples waiting (not yet handed to `solve`).
+  std::size_t pending() const;
+  /// Blocks until every pushed sample has been handed on and solved (tests).
+  void drain();
+
+ private:
+  void run();
+
+  Solve solve_;
+  Thinned thinned_;
+  double max_lag_;
+  mutable std::mutex m_;
+  std::condition_variable cv_, idle_cv_;
+  std::deque<Sample> queue_;
+  bool busy_ = false, stop_ = false;
+  std::thread thread_;
+};
+
+}  // namespace ros_bridge
+}  // namespace mooring_dynamics
