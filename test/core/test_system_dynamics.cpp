@@ -381,24 +381,33 @@ TEST(SystemDynamics, FailedBuoyLegRestartsItsGroupTheOtherGroupKeepsItsBits) {
 }
 
 // Line events (issue 21): a three-leg buoy loses leg0 (its anchor on +x) at t = 1 s. The two
-// legs left pull it toward -x, on the axis by symmetry, toward the two-leg static equilibrium
-// (solved independently, the system without leg0); the let-go leg pulls nothing from the
-// release on (and, a chain collapsing slack onto the seabed, is retired when its solver gives
-// up), and the event is reported.
-TEST(SystemDynamics, ThreeLegBuoyLosingALegDriftsTowardTheTwoLegEquilibrium) {
-  constexpr double kRelease = 1.0, kEnd = 40.0;  // [s]
+// legs left pull it toward -x, on the axis by symmetry, and it settles on the two-leg static
+// equilibrium (solved independently, the system without leg0: x = -125 m between their anchors,
+// where both legs pull along y); the let-go leg pulls nothing from the release on (and, a chain
+// collapsing slack onto the seabed, is retired when its solver gives up), and the event is
+// reported.
+TEST(SystemDynamics, ThreeLegBuoyLosingALegSettlesOnTheTwoLegEquilibrium) {
+  constexpr double kRelease = 1.0, kEnd = 800.0;  // [s]
   // Symmetry about the x axis: legs 1 and 2 are mirror images, as in the pulled-down test.
   constexpr double kMirrorRelTol = 1e-6;
+  // The approach is slow (the legs' pull along x fades as the buoy nears the equilibrium: 31 m in
+  // the first 39 s, 125 m by 740 s) and overshoots into the slow surge mode about it, which
+  // quadratic drag barely damps at these speeds: 0.36 m at 800 s (measured; 0.05 m at 1000 s).
+  constexpr double kSettleTol = 1.0;  // [m] of the 125 m move
+  // The legs pull along y there: their tension is flat in x (measured 3e-6 of it at 800 s), and
+  // the draft is the statics' to the tension's 1e-3 over the waterplane (rho g A_w = 126 kN/m).
+  constexpr double kSettledTensionRelTol = 1e-3;
+  constexpr double kSettledDraftTol = 1e-3;  // [m]
   SystemProblem two = threeLeg();
   two.lines.erase(two.lines.begin());
   two.points.erase(two.points.begin() + 1);
   for (SystemLine& l : two.lines) --l.from;
   const SystemStaticResult eq2 = solveSystemStatic(two);
   ASSERT_TRUE(eq2.summary.converged) << eq2.summary.message;
-  const double x2 = eq2.points[0].x;
+  const double x2 = eq2.points[0].x, T2 = eq2.lines[0].topTension();
 
   DynamicOptions o;
-  o.dt = 0.5;
+  o.dt = 1.0;  // the 800 s in about 3 s; the release's transient (not checked here) at 0.5 s peaks 9 % higher
   o.duration = kEnd;
   // The retirement of a let-go leg whose solver gives up is what this test covers: without the
   // fallback step (which would carry the collapsing chain on, see test_dynamics3d_fallback.cpp).
@@ -411,8 +420,8 @@ TEST(SystemDynamics, ThreeLegBuoyLosingALegDriftsTowardTheTwoLegEquilibrium) {
   o.events = {e};
   SystemDynamics sim(threeLeg(), o);
   const double x0 = sim.points()[0].x, T1_static = sim.line(1).topTension();
-  ASSERT_LT(x2, x0 - 5.0) << "the two legs' equilibrium lies toward -x";
-  double peak1 = 0.0, last_x = x0;
+  ASSERT_LT(x2, x0 - 100.0) << "the two legs' equilibrium lies far toward -x";
+  double peak1 = 0.0, last_x = x0, x_39 = 0.0, t_arrival = 0.0;
   for (int i = 1; i <= static_cast<int>(kEnd / o.dt); ++i) {
     std::string why;
     ASSERT_TRUE(sim.advanceTo(o.dt * i, &why)) << why;
@@ -422,8 +431,13 @@ TEST(SystemDynamics, ThreeLegBuoyLosingALegDriftsTowardTheTwoLegEquilibrium) {
     EXPECT_NEAR(p.y, 0.0, kMirrorRelTol * std::abs(x0 - x2)) << sim.time();
     if (sim.time() > kRelease + 1e-9) {
       EXPECT_NEAR(sim.line(0).topTension(), 0.0, 1e-6 * T1_static) << "let go at " << sim.time();
-      EXPECT_LE(p.x, last_x + 1e-6) << "drifts toward -x without coming back (overdamped by the chain), t = " << sim.time();
+      if (t_arrival == 0.0) {
+        EXPECT_LE(p.x, last_x + 1e-6) << "drifts toward -x without coming back (overdamped by the chain), t = "
+                                      << sim.time();
+      }
     }
+    if (t_arrival == 0.0 && p.x <= x2) t_arrival = sim.time();
+    if (std::abs(sim.time() - (kRelease + 39.0)) < 1e-9) x_39 = p.x;
     peak1 = std::max(peak1, T1);
     last_x = p.x;
   }
@@ -432,14 +446,18 @@ TEST(SystemDynamics, ThreeLegBuoyLosingALegDriftsTowardTheTwoLegEquilibrium) {
   EXPECT_EQ(events[0].line, "leg0");
   EXPECT_EQ(events[0].what, "released top");
   EXPECT_NEAR(events[0].t, kRelease, 1e-9);
-  std::printf("three-leg buoy losing leg0: x %.2f -> %.2f m (two-leg equilibrium %.2f m); leg1 static %.0f N, "
-              "peak %.0f N, end %.0f N; %zu events\n",
-              x0, last_x, x2, T1_static, peak1, sim.line(1).topTension(), events.size());
-  // With no current the two legs balance only where both pull along y, at x = -125 m between
-  // their anchors: a long, slow drift (measured: 31 m in the 39 s).
-  EXPECT_LT(last_x, x0 - 10.0);
-  EXPECT_GT(last_x, x2);
-  EXPECT_LT(sim.line(1).topTension(), T1_static) << "the buoy moved toward the remaining anchors";
+  const auto p = sim.points()[0];
+  std::printf("three-leg buoy losing leg0: x %.2f -> %.2f m at 40 s, %.3f m at %.0f s (two-leg equilibrium %.3f m, "
+              "first reached at %.0f s); draft %.4f m (statics %.4f m); leg1 static %.0f N, peak %.0f N, end %.1f N "
+              "(two-leg statics %.1f N); %zu events\n",
+              x0, x_39, p.x, kEnd, x2, t_arrival, -p.z, -eq2.points[0].z, T1_static, peak1, sim.line(1).topTension(), T2,
+              events.size());
+  EXPECT_GT(t_arrival, 0.0) << "the buoy reached the two-leg equilibrium";
+  EXPECT_NEAR(p.x, x2, kSettleTol);
+  EXPECT_NEAR(p.y, 0.0, kMirrorRelTol * std::abs(x0 - x2));
+  EXPECT_NEAR(p.z, eq2.points[0].z, kSettledDraftTol);
+  EXPECT_NEAR(sim.line(1).topTension(), T2, kSettledTensionRelTol * T2);
+  EXPECT_NEAR(sim.line(2).topTension(), eq2.lines[1].topTension(), kSettledTensionRelTol * T2);
 }
 
 // A winch at leg0's top (dynamics.winch with line:) hauls it in 10 m over 20 s: the buoy moves
