@@ -233,8 +233,10 @@ DriftShot shootShearedDrift(const Problem& p) {
     const double depth = -z;
     if (depth <= c.front().depth) return c.front().speed;
     for (std::size_t i = 1; i < c.size(); ++i)
-      if (depth <= c[i].depth)
-        return c[i - 1].speed + (c[i].speed - c[i - 1].speed) * (depth - c[i - 1].depth) / (c[i].depth - c[i - 1].depth);
+      if (depth <= c[i].depth) {
+        const double f = (depth - c[i - 1].depth) / (c[i].depth - c[i - 1].depth);
+        return c[i - 1].speed + f * (c[i].speed - c[i - 1].speed);
+      }
     return c.back().speed;
   };
   const double qd = 0.5 * rho * 0.25 * kPi * dr.diameter * dr.diameter;

@@ -248,10 +248,10 @@ TEST(Dynamics3D, LineSweptThroughTheVerticalMatches2DOnItsPlanarLegAndItsStatics
   // vertical, the singular orientation of an angle-based 3-D frame), then circles the anchor's
   // vertical once (the line's azimuth turns through 360 deg) and returns. Against independent
   // answers: on the planar leg (t <= 10 s) the 2-D solver, whose angle has no singularity at the
-  // vertical (top and anchor tensions, top position); over whole heave periods the mean top tension is the mean of the static tensions at
-  // the top's positions (the heave's inertia, +-330 N, and tangential drag, +-260 N, are odd in
-  // its phase and average out; the start from rest at the table's speed is left out: the first
-  // period).
+  // vertical (top and anchor tensions, top position); over whole heave periods the mean top
+  // tension is the mean of the static tensions at the top's positions (the heave's inertia, +-330
+  // N, and tangential drag, +-260 N, are odd in its phase and average out; the start from rest at
+  // the table's speed is left out: the first period).
   // Planar leg: as kPlanarRelTol (measured 5.6e-6 of the peak tension, 1e-4 m).
   // Mean: what is left is of second order in the motion (the static tension's curvature along
   // the path, the sideways drag's H^2 / 2T): measured 0.07 % on the circle, 0.03 % over 5-40 s;

@@ -450,8 +450,8 @@ TEST(SystemDynamics, ThreeLegBuoyLosingALegSettlesOnTheTwoLegEquilibrium) {
   std::printf("three-leg buoy losing leg0: x %.2f -> %.2f m at 40 s, %.3f m at %.0f s (two-leg equilibrium %.3f m, "
               "first reached at %.0f s); draft %.4f m (statics %.4f m); leg1 static %.0f N, peak %.0f N, end %.1f N "
               "(two-leg statics %.1f N); %zu events\n",
-              x0, x_39, p.x, kEnd, x2, t_arrival, -p.z, -eq2.points[0].z, T1_static, peak1, sim.line(1).topTension(), T2,
-              events.size());
+              x0, x_39, p.x, kEnd, x2, t_arrival, -p.z, -eq2.points[0].z, T1_static, peak1, sim.line(1).topTension(),
+              T2, events.size());
   EXPECT_GT(t_arrival, 0.0) << "the buoy reached the two-leg equilibrium";
   EXPECT_NEAR(p.x, x2, kSettleTol);
   EXPECT_NEAR(p.y, 0.0, kMirrorRelTol * std::abs(x0 - x2));

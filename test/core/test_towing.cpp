@@ -342,7 +342,8 @@ TEST(TowingDynamics, AfterATurnAndAnImpulsiveHeadingChangeTheTowSettlesBackOnThe
   }
   const std::size_t e = r.t.size() - 1;
   std::printf("after the turn and the heading change: tension %.2f N (static tow %.2f N), body %.3f m deep "
-              "(static %.3f m), %.3f m astern (static %.3f m), %.3f m off the track; lowest tension in the turn %.1f N\n",
+              "(static %.3f m), %.3f m astern (static %.3f m), %.3f m off the track; lowest tension in the turn "
+              "%.1f N\n",
               r.top_tension[e], Ts, -r.node_z[0][e], -zs, r.top_x[e] - r.node_x[0][e], trail, r.node_y[0][e] - R,
               Tmin_turn);
   // The premise of settling back: the body, 291 m astern, cut the 200 m turn's corner and was far
