@@ -129,6 +129,42 @@ TEST(VesselLockstep, SamplesWithinTheSolveIntervalAreHeldAndTheSolvesMatchACoars
   EXPECT_EQ(fast.dropped(), 2);
 }
 
+// A 1 kHz source whose times are stamps in nanoseconds differenced in double (as the node's
+// stamp - epoch): 0.1 s after a solve can come out a hair short of 0.1. Within
+// kIntervalTolerance it counts: a solve every 100 samples, none at 101.
+TEST(VesselLockstep, AOneKilohertzSourceIsSolvedEveryHundredSamples) {
+  VesselLockstepOptions lo;
+  lo.solve_interval = 0.1;
+  VesselLockstep run(fourLegVessel(10.0), options(), lo);
+  constexpr long kEpochNs = 1234567890123456789;  // a stamp in ns, far from 0 as a real clock's
+  std::vector<long> solved_at;
+  for (long k = 0; k <= 1000; ++k) {
+    const double t = static_cast<double>((kEpochNs + k * 1000000) - kEpochNs) * 1e-9;
+    const auto r = run.onSample(t, surged(0.1 * std::sin(t)));
+    if (r.outcome != VesselLockstep::Outcome::Held) solved_at.push_back(k);
+  }
+  ASSERT_EQ(solved_at.size(), 11u);
+  for (std::size_t i = 0; i < solved_at.size(); ++i) EXPECT_EQ(solved_at[i], static_cast<long>(100 * i));
+}
+
+// restartAt: the lines from statics at the sample (a solver too far behind its source), counted
+// as a restart of reason Behind; a NaN pose is dropped instead.
+TEST(VesselLockstep, RestartAtStartsFromTheStaticsAtTheSample) {
+  VesselLockstep run(fourLegVessel(10.0), options());
+  run.onSample(0.0, surged(0.0));
+  run.onSample(0.25, surged(0.2));
+  RigidPose bad = surged(1.0);
+  bad.position.z() = std::nan("");
+  EXPECT_EQ(run.restartAt(5.0, bad, "behind").outcome, VesselLockstep::Outcome::Dropped);
+  const auto r = run.restartAt(5.0, surged(1.0), "behind");
+  EXPECT_EQ(r.outcome, VesselLockstep::Outcome::Reinitialised);
+  EXPECT_EQ(r.reason, VesselLockstep::Reason::Behind);
+  EXPECT_EQ(run.solverTime(), 0.0);
+  EXPECT_EQ(run.lastTime(), 5.0);
+  const VesselStaticResult st = solveVesselStatic(fourLegVessel(10.0), surged(1.0));
+  EXPECT_NEAR((run.wrench().force_world - st.wrench.force_world).norm(), 0.0, 1e-6 * std::abs(st.wrench.force_world.z()));
+}
+
 TEST(VesselLockstep, OptionsNameTheField) {
   VesselLockstepOptions lo;
   lo.threads = 0;

@@ -151,7 +151,7 @@ VesselLockstep::Result VesselLockstep::onSample(double t, const RigidPose& pose_
     return r;
   }
   jumps_ = 0;
-  if (t - last_t_ < options_.solve_interval) {
+  if (t - last_t_ < options_.solve_interval - VesselLockstepOptions::kIntervalTolerance) {
     accepted_t_ = t;
     ++held_;
     r.outcome = Outcome::Held;
@@ -243,6 +243,22 @@ VesselLockstep::Result VesselLockstep::reset() {
   const BodyTwist tw{last_motion_.pose.toBody(last_motion_.velocity), last_motion_.pose.toBody(last_motion_.angular_velocity)};
   return withReason(start(last_t_, last_pose_, last_has_twist_ ? &tw : nullptr, Outcome::Reinitialised, "reset"),
                     Reason::Reset);
+}
+
+VesselLockstep::Result VesselLockstep::restartAt(double t, const RigidPose& pose_in, const std::string& why) {
+  Result r;
+  const std::string bad = pose_in.validate("pose");
+  if (!bad.empty() || !std::isfinite(t)) {
+    ++dropped_;
+    r.reason = !bad.empty() ? Reason::NonUnitOrientation : Reason::NonFiniteTime;
+    if (!pose_in.position.allFinite()) r.reason = Reason::NonFinitePosition;
+    else if (!pose_in.orientation.coeffs().allFinite()) r.reason = Reason::NonFiniteOrientation;
+    r.message = !bad.empty() ? bad : "time = " + num(t) + ": must be finite";
+    return r;
+  }
+  RigidPose pose = pose_in;
+  pose.orientation.normalize();
+  return withReason(start(t, pose, nullptr, Outcome::Reinitialised, why), Reason::Behind);
 }
 
 VesselLockstep::Result VesselLockstep::withReason(Result r, Reason reason) {

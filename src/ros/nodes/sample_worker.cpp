@@ -10,8 +10,8 @@
 namespace mooring_dynamics {
 namespace ros_bridge {
 
-SampleWorker::SampleWorker(Solve solve, Thinned thinned, double max_lag)
-    : solve_(std::move(solve)), thinned_(std::move(thinned)), max_lag_(max_lag) {
+SampleWorker::SampleWorker(Solve solve, Behind behind, double max_lag)
+    : solve_(std::move(solve)), behind_(std::move(behind)), max_lag_(max_lag) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -21,6 +21,7 @@ SampleWorker::~SampleWorker() {
     stop_ = true;
   }
   cv_.notify_all();
+  idle_cv_.notify_all();
   thread_.join();
 }
 
@@ -47,26 +48,34 @@ void SampleWorker::run() {
   // busy host a pose is answered before the solve in progress goes on. Failing to: no harm.
   setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kNice);
   std::vector<Sample> batch;
+  auto idle = [this] {  // (under m_)
+    busy_ = false;
+    idle_cv_.notify_all();
+  };
   for (;;) {
     {
       std::unique_lock<std::mutex> l(m_);
-      busy_ = false;
-      idle_cv_.notify_all();
+      idle();
       cv_.wait(l, [this] { return stop_ || !queue_.empty(); });
       if (stop_) return;
       batch.assign(std::make_move_iterator(queue_.begin()), std::make_move_iterator(queue_.end()));
       queue_.clear();
       busy_ = true;
     }
-    const double lag = (batch.back().stamp - batch.front().stamp).toSec();
-    if (batch.size() > 1 && lag > max_lag_) {
-      thinned_(static_cast<long>(batch.size() - 1), lag);
-      batch.erase(batch.begin(), batch.end() - 1);
+    const double lag = handed_any_ ? (batch.back().stamp - last_handed_).toSec() : 0.0;
+    handed_any_ = true;
+    last_handed_ = batch.back().stamp;
+    if (lag > max_lag_) {
+      behind_(batch.back(), lag, static_cast<long>(batch.size() - 1));
+      continue;
     }
     for (const Sample& s : batch) {
       {
         std::lock_guard<std::mutex> l(m_);
-        if (stop_) return;
+        if (stop_) {
+          idle();
+          return;
+        }
       }
       solve_(s);
     }

@@ -33,7 +33,7 @@ VesselMonitor::VesselMonitor(std::vector<std::string> line_names, const VesselMo
   tally_ = EventTally({k::kNonFinitePosition, k::kNonFiniteOrientation, k::kNonUnitOrientation, k::kBadTwist,
                        k::kNonFiniteTime, k::kZeroStamp, k::kUnknownFrame, k::kGnssRejected, k::kSameStamp,
                        k::kStampBack, k::kJump, k::kStartFailed,
-                       k::kRestartLoop, k::kRestartGap, k::kRestartJumps, k::kRestartReset, k::kRestartFailures,
+                       k::kRestartLoop, k::kRestartGap, k::kRestartJumps, k::kRestartReset, k::kRestartBehind, k::kRestartFailures,
                        k::kFailedKept, k::kLinesRestarted, k::kRequestRejected});
 }
 
@@ -134,6 +134,7 @@ void VesselMonitor::onResult(const core::VesselLockstep::Result& r, double, doub
       tally_.count(r.reason == R::LoopBack ? k::kRestartLoop
                    : r.reason == R::Gap    ? k::kRestartGap
                    : r.reason == R::Jumps  ? k::kRestartJumps
+                   : r.reason == R::Behind ? k::kRestartBehind
                                            : k::kRestartReset);
       last_restart_ = r.message;
       last_event_ = "restarted from statics: " + r.message;
@@ -209,8 +210,7 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
   if (w.dropped > 0) warnings.push_back(std::to_string(w.dropped) + " sample(s) dropped: " + last_drop_);
   if (w.restarts > 0) warnings.push_back(std::to_string(w.restarts) + " restart(s): " + last_restart_);
   if (w.thinned > 0)
-    warnings.push_back(std::to_string(w.thinned) + " sample(s) thinned: the solver fell behind (lag " +
-                       fmt(solver_lag_, "%.3g") + " s)");
+    warnings.push_back(std::to_string(w.thinned) + " pose(s) skipped: the solver fell behind and restarted from statics");
   if (requests_rejected_ > 0)
     warnings.push_back(std::to_string(requests_rejected_) + " service request(s) rejected: " + last_request_);
   requests_rejected_ = 0;
@@ -239,7 +239,7 @@ std::vector<VesselMonitor::Status> VesselMonitor::summarise(double wall_now) {
   if (solver_lag_ >= 0.0) {
     kv(s, "poses answered (window / total)", std::to_string(w.answered) + " / " + std::to_string(total_.answered));
     kv(s, "poses held, not solved (window / total)", std::to_string(w.held) + " / " + std::to_string(total_.held));
-    kv(s, "samples thinned, solver behind (window / total)",
+    kv(s, "poses skipped, solver behind (window / total)",
        std::to_string(w.thinned) + " / " + std::to_string(total_.thinned));
     kv(s, "solver lag [s]", fmt(solver_lag_, "%.3g"));
   }

@@ -95,8 +95,12 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   pnh_.param<bool>("restart_failed_lines", lo.restart_failed_lines, lo.restart_failed_lines);
   lo.solve_interval = doubleParam(pnh_, "solve_interval", 0.0, [](double v) { return v >= 0.0; },
                                   "must be >= 0 [s] (0: every pose solved in lockstep)");
-  const double max_solver_lag = doubleParam(pnh_, "max_solver_lag", 1.0, [&lo](double v) { return v > lo.solve_interval; },
-                                            "must be > ~solve_interval [s]");
+  decimated_ = lo.solve_interval > 0.0;
+  const double max_solver_lag =
+      decimated_ ? doubleParam(pnh_, "max_solver_lag", 1.0, [&lo](double v) { return v > lo.solve_interval; },
+                               "must be > ~solve_interval [s]")
+                 : 0.0;
+  max_solver_lag_ = max_solver_lag;
   loop_back_ = lo.loop_back;
 
   VesselMonitorOptions mo;
@@ -199,11 +203,9 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     gnss_ = std::make_unique<GnssInput>(
         pnh_, go, system_.vessel.pose, Eigen::Vector2d::Zero(),
         [this](const ros::Time& stamp, const core::RigidPose& p) {
-          {
-            std::lock_guard<std::mutex> l(monitor_mutex_);
-            monitor_->onMotionReceived(wallNow());
-          }
           onWorldPose(stamp, p, "fix");
+          std::lock_guard<std::mutex> l(monitor_mutex_);
+          monitor_->onMotionReceived(wallNow());
         },
         [this](const std::string& message) {
           {
@@ -219,20 +221,14 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   }
   diag_timer_ = nh_.createWallTimer(ros::WallDuration(diag_period), &VesselNode::onDiagnosticsTimer, this);
   if (publish_fairlead_frames_) publishAnchorFrames();
-  if (lo.solve_interval > 0.0) {
+  if (decimated_) {
     monitor_->onSolverLag(0.0);
     worker_ = std::make_unique<SampleWorker>(
         [this](const SampleWorker::Sample& q) {
           std::lock_guard<std::mutex> l(solver_mutex_);
           solveSample(q.stamp, q.pose, q.field, q.has_twist ? &q.twist : nullptr);
         },
-        [this](long n, double lag) {
-          std::lock_guard<std::mutex> l(monitor_mutex_);
-          monitor_->onThinned(n);
-          monitor_->onSolverLag(lag);
-          ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: the solver is %.3f s behind the poses: %ld pose(s) "
-                            "thinned (answered, not solved; ~max_solver_lag)", lag, n);
-        },
+        [this](const SampleWorker::Sample& q, double lag, long skipped) { onSolverBehind(q, lag, skipped); },
         max_solver_lag);
     input += "; decimated: a solve every " + formatNumber(lo.solve_interval) +
              " s on a solver thread, every pose answered at once from the last solve (~solve_interval)";
@@ -294,10 +290,15 @@ void VesselNode::reject(const std::string& message, const char* key) {
 
 void VesselNode::onMotion(const ros::Time& stamp, const std::string& frame, const geometry_msgs::Pose& pose_in,
                           const std::string& field, const core::BodyTwist* twist) {
-  {
-    std::lock_guard<std::mutex> l(monitor_mutex_);
-    monitor_->onMotionReceived(wallNow());
-  }
+  // Counted after it is handled: the answer (decimated mode) waits for no lock the solver
+  // thread may hold.
+  onMotionIn(stamp, frame, pose_in, field, twist);
+  std::lock_guard<std::mutex> l(monitor_mutex_);
+  monitor_->onMotionReceived(wallNow());
+}
+
+void VesselNode::onMotionIn(const ros::Time& stamp, const std::string& frame, const geometry_msgs::Pose& pose_in,
+                            const std::string& field, const core::BodyTwist* twist) {
   if (stamp.isZero()) {
     reject("header.stamp = 0: lockstep mode needs stamped poses", vessel_keys::kZeroStamp);
     return;
@@ -323,7 +324,7 @@ void VesselNode::onMotion(const ros::Time& stamp, const std::string& frame, cons
 
 void VesselNode::onWorldPose(const ros::Time& stamp, const core::RigidPose& rp, const std::string& field,
                              const core::BodyTwist* twist) {
-  if (worker_) {
+  if (decimated_) {
     answerAndQueue(stamp, rp, field, twist);
     return;
   }
@@ -360,14 +361,33 @@ void VesselNode::answerAndQueue(const ros::Time& stamp, const core::RigidPose& r
   worker_->push(std::move(q));
 }
 
-void VesselNode::solveSample(const ros::Time& stamp, const core::RigidPose& rp, const std::string& field,
-                             const core::BodyTwist* twist) {
+double VesselNode::sampleTime(const ros::Time& stamp, const core::RigidPose& rp, const std::string& field) {
   // The epoch is the first stamp of a usable pose; VesselLockstep checks (and counts) every sample.
   if (!have_epoch_ && rp.validate(field).empty()) {
     have_epoch_ = true;
     epoch_ = stamp;
   }
-  const double t = have_epoch_ ? (stamp - epoch_).toSec() : 0.0;
+  return have_epoch_ ? (stamp - epoch_).toSec() : 0.0;
+}
+
+void VesselNode::onSolverBehind(const SampleWorker::Sample& q, double lag, long skipped) {
+  std::lock_guard<std::mutex> l(solver_mutex_);
+  const double t = sampleTime(q.stamp, q.pose, q.field);
+  const ros::WallTime w0 = ros::WallTime::now();
+  const core::VesselLockstep::Result r = lockstep_->restartAt(
+      t, q.pose,
+      "the solver fell " + formatNumber(lag) + " s behind the poses (~max_solver_lag " + formatNumber(max_solver_lag_) +
+          " s): " + std::to_string(skipped) + " pose(s) skipped, the lines restarted from statics at the newest");
+  {
+    std::lock_guard<std::mutex> m(monitor_mutex_);
+    monitor_->onThinned(skipped);
+  }
+  handle(r, q.stamp, (ros::WallTime::now() - w0).toSec(), 0.0);
+}
+
+void VesselNode::solveSample(const ros::Time& stamp, const core::RigidPose& rp, const std::string& field,
+                             const core::BodyTwist* twist) {
+  const double t = sampleTime(stamp, rp, field);
   const double before = lockstep_->solverTime();
   const ros::WallTime w0 = ros::WallTime::now();
   core::VesselLockstep::Result r = lockstep_->onSample(t, rp, twist);
@@ -382,10 +402,14 @@ void VesselNode::solveSample(const ros::Time& stamp, const core::RigidPose& rp, 
 }
 
 void VesselNode::snapshotForDiagnostics() {
-  diag_events_ = lockstep_->dynamics().lineEvents();
-  diag_lengths_ = lockstep_->lineLengths();
-  diag_rates_.assign(system_.lines.size(), 0.0);
-  for (std::size_t i = 0; i < system_.lines.size(); ++i) diag_rates_[i] = lockstep_->dynamics().lineWinchRate(i);
+  // Copied here, swapped in under the monitor's lock (held briefly: the receiving thread takes it).
+  std::vector<core::LineEventRecord> events = lockstep_->dynamics().lineEvents();
+  std::vector<double> lengths = lockstep_->lineLengths(), rates(system_.lines.size(), 0.0);
+  for (std::size_t i = 0; i < system_.lines.size(); ++i) rates[i] = lockstep_->dynamics().lineWinchRate(i);
+  std::lock_guard<std::mutex> l(monitor_mutex_);
+  diag_events_.swap(events);
+  diag_lengths_.swap(lengths);
+  diag_rates_.swap(rates);
 }
 
 void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& stamp, double wall_spent,
@@ -402,16 +426,16 @@ void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& 
   std::vector<long> fallback(system_.lines.size(), 0);
   for (std::size_t i = 0; i < fallback.size(); ++i) fallback[i] = lockstep_->dynamics().lineFallbackSteps(i);
   std::string last_event;
+  if (r.outcome != core::VesselLockstep::Outcome::Held) snapshotForDiagnostics();
   {
     std::lock_guard<std::mutex> l(monitor_mutex_);
     monitor_->onResult(r, wallNow(), wall_spent, advanced, r.publish ? &top : nullptr, lockstep_->solverTime(),
                        r.publish ? &peaks : nullptr);
     monitor_->onFallbackSteps(fallback);
     last_event = monitor_->lastEvent();
-    if (r.outcome != core::VesselLockstep::Outcome::Held) snapshotForDiagnostics();
-    if (worker_) {
-      std::lock_guard<std::mutex> a(answer_mutex_);
-      if (answered_any_) monitor_->onSolverLag(std::max(0.0, (last_answered_ - stamp).toSec()));
+    if (r.outcome != core::VesselLockstep::Outcome::Dropped) {
+      have_processed_ = true;
+      last_processed_ = stamp;
     }
   }
   const double ms = wall_spent * 1000.0;
@@ -444,7 +468,7 @@ void VesselNode::handle(const core::VesselLockstep::Result& r, const ros::Time& 
 
 void VesselNode::publish(const ros::Time& stamp) {
   const core::VesselWrench w = lockstep_->wrench();
-  if (worker_) {  // decimated: the poses' answers carry it from now on
+  if (decimated_) {  // the poses' answers carry it from now on
     std::lock_guard<std::mutex> l(answer_mutex_);
     answer_wrench_ = w;
   } else {
@@ -535,7 +559,16 @@ double fileLength(const core::SystemLine& l) {
 void VesselNode::onDiagnosticsTimer(const ros::WallTimerEvent&) {
   // Not on solver_mutex_: the line events and lengths come from the last solve's snapshot, so
   // that the timer never waits for a solve in progress (decimated mode answers poses meanwhile).
+  bool answered = false;
+  ros::Time newest;
+  if (decimated_) {
+    std::lock_guard<std::mutex> a(answer_mutex_);
+    answered = answered_any_;
+    newest = last_answered_;
+  }
   std::unique_lock<std::mutex> monitor(monitor_mutex_);
+  // The solver's lag: the newest answered pose's stamp less the last one the solver took.
+  if (decimated_ && answered && have_processed_) monitor_->onSolverLag(std::max(0.0, (newest - last_processed_).toSec()));
   const double now = wallNow();
   if (monitor_->silent(now) && monitor_->everReceived())
     ROS_WARN_THROTTLE(kWarnPeriod, "mooring_dynamics: no vessel pose for %.1f s; last good state kept (latched)",

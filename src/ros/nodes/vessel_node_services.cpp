@@ -23,6 +23,7 @@ bool VesselNode::onRelease(ReleaseLine::Request& req, ReleaseLine::Response& res
   }
   std::lock_guard<std::mutex> l(solver_mutex_);
   const std::string err = lockstep_->releaseLine(req.line, end, "released by ~release");
+  snapshotForDiagnostics();
   res.success = err.empty();
   res.message = err.empty() ? "line " + req.line + ": " + req.end + " let go at solver time " +
                                   std::to_string(lockstep_->solverTime()) + " s; it pulls nothing from the next sample on"
@@ -41,6 +42,7 @@ bool VesselNode::onWinch(Winch::Request& req, Winch::Response& res) {
   std::string note;
   const double target = req.target_length > 0.0 ? req.target_length : std::numeric_limits<double>::quiet_NaN();
   const std::string err = lockstep_->winchLine(req.line, req.rate, target, note);
+  snapshotForDiagnostics();
   res.success = err.empty();
   res.message = err.empty() ? "line " + req.line + ": winch " + note : err;
   const std::vector<double> lengths = lockstep_->lineLengths();

@@ -60,9 +60,14 @@ struct VesselLockstepOptions {
   int failures_to_reinit = 3;            ///< this many failed samples in a row restart from statics
   bool restart_failed_lines = true;      ///< a failed line's group restarts alone (else the step fails)
   int threads = 1;                       ///< threads that advance the lines (>= 1; same bits for any)
-  /// [s] >= 0: samples closer than this to the last solved one are held, not solved (0: every
-  /// accepted sample is solved). The problem's dt is the natural choice for a fast source.
+  /// [s] >= 0: samples closer than this to the last solved one (less kIntervalTolerance) are
+  /// held, not solved (0: every accepted sample is solved). The problem's dt is the natural
+  /// choice for a fast source.
   double solve_interval = 0.0;
+  /// [s] stamps rounded to the nanosecond and differenced in double land a hair short of the
+  /// interval (0.0999999999 s for 0.1 s): within this they count as a whole interval, so that a
+  /// 1 kHz source is solved every 100 ms and not every 101 (one step of dt and one of 1 ms).
+  static constexpr double kIntervalTolerance = 1e-6;
   /// Empty when valid, else the field, value and constraint.
   std::string validate() const;
 };
@@ -73,7 +78,7 @@ class VesselLockstep {
   /// Why a sample was dropped, the run restarted or failed (counted apart in the node's diagnostics).
   enum class Reason {
     None, NonFinitePosition, NonFiniteOrientation, NonUnitOrientation, BadTwist, NonFiniteTime, SameStamp, StampBack, Jump,
-    StartFailed, LoopBack, Gap, Jumps, Reset, SolverFailed
+    StartFailed, LoopBack, Gap, Jumps, Reset, SolverFailed, Behind
   };
   struct Result {
     Outcome outcome = Outcome::Dropped;
@@ -97,6 +102,10 @@ class VesselLockstep {
   Result onSample(double t, const RigidPose& pose, const BodyTwist* twist = nullptr);
   /// Restart from statics at the last accepted pose (Dropped before the first sample).
   Result reset();
+  /// Restart from statics at this sample (time t [s], pose in the world frame), for a caller
+  /// whose solver has fallen too far behind its source to follow it (Reinitialised, Reason::Behind,
+  /// `why` as the message). A bad pose or time is dropped as by onSample.
+  Result restartAt(double t, const RigidPose& pose, const std::string& why);
 
   bool started() const { return started_; }
   /// Time of the last accepted sample (solved or held) [s], of the last solved one [s], and the

@@ -1,9 +1,11 @@
 // The solver thread of the vessel node's decimated mode (~solve_interval > 0; docs/ros_interface.md,
 // "A fast vessel simulator"). The receiving thread answers each pose at once from the last solve
 // and pushes it here; this thread hands the samples to `solve` in arrival order, so that the
-// lockstep's checks and counts see every one. When the oldest waiting sample is more than
-// `max_lag` seconds (of stamps) older than the newest, the solver has fallen behind: only the
-// newest is handed on, the others are counted through `thinned` (never lost silently).
+// lockstep's checks and counts see every one. When the newest waiting sample is more than
+// `max_lag` seconds (of stamps) after the last one handed on, the solver has fallen behind and
+// cannot catch up by solving (the lines must still be stepped through all of that time): the
+// newest goes to `behind` (the node restarts the lines from statics there), the others are
+// skipped, and both are counted by the caller (never lost silently).
 #pragma once
 
 #include <condition_variable>
@@ -30,11 +32,11 @@ class SampleWorker {
     core::BodyTwist twist;
   };
   using Solve = std::function<void(const Sample&)>;
-  /// `count` samples skipped, the lag [s] of stamps that made them so.
-  using Thinned = std::function<void(long count, double lag)>;
+  /// The newest sample, the lag [s] of stamps behind it, and the samples skipped before it.
+  using Behind = std::function<void(const Sample& newest, double lag, long skipped)>;
 
   /// Starts the thread. `max_lag` [s] > 0.
-  SampleWorker(Solve solve, Thinned thinned, double max_lag);
+  SampleWorker(Solve solve, Behind behind, double max_lag);
   /// Stops the thread after the sample in hand (waiting samples are discarded) and joins it.
   ~SampleWorker();
   SampleWorker(const SampleWorker&) = delete;
@@ -46,19 +48,22 @@ class SampleWorker {
   void push(Sample s);
   /// Samples waiting (not yet handed to `solve`).
   std::size_t pending() const;
-  /// Blocks until every pushed sample has been handed on and solved (tests).
+  /// Blocks until every sample pushed so far has been handed on and solved, or the worker stops
+  /// (tests; returns only when the source pauses).
   void drain();
 
  private:
   void run();
 
   Solve solve_;
-  Thinned thinned_;
+  Behind behind_;
   double max_lag_;
   mutable std::mutex m_;
   std::condition_variable cv_, idle_cv_;
   std::deque<Sample> queue_;
   bool busy_ = false, stop_ = false;
+  bool handed_any_ = false;  ///< (worker thread only)
+  ros::Time last_handed_;    ///< stamp of the last sample handed on (worker thread only)
   std::thread thread_;
 };
 

@@ -58,6 +58,7 @@ constexpr const char* kRestartLoop = "restarted: bag loop";
 constexpr const char* kRestartGap = "restarted: gap";
 constexpr const char* kRestartJumps = "restarted: jumps";
 constexpr const char* kRestartReset = "restarted: reset";
+constexpr const char* kRestartBehind = "restarted: solver behind";  ///< decimated mode (~max_solver_lag)
 constexpr const char* kRestartFailures = "restarted: line failures";
 constexpr const char* kFailedKept = "line failed: last good state kept";
 constexpr const char* kLinesRestarted = "line failed: restarted alone";
@@ -98,8 +99,9 @@ class VesselMonitor {
   /// a storm's slack-and-snap steps are expected; docs/method.md "Slack and snap").
   void onFallbackSteps(const std::vector<long>& per_line_total);
   /// ~solve_interval > 0 (decimated mode, docs/ros_interface.md): a pose answered at once from
-  /// the last solve; `thinned` samples skipped because the solver was behind; the solver's lag
-  /// (newest answered stamp less the last solved one) [s].
+  /// the last solve; `thinned` poses skipped when the solver fell too far behind (and restarted
+  /// from statics at the newest); the solver's lag (newest answered stamp less the last one the
+  /// solver took) [s].
   void onAnswered() { ++window_.answered; }
   void onThinned(long thinned) { window_.thinned += thinned; }
   void onSolverLag(double lag) { solver_lag_ = lag; }

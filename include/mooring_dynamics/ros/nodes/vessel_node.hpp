@@ -23,7 +23,8 @@
 //                     once on ~wrench and ~wrench_world (its stamp) with the last solve's wrench,
 //                     a pose solved on a solver thread when solve_interval has passed since the
 //                     last solved one (core::VesselLockstepOptions::solve_interval)
-//   ~max_solver_lag   [s] decimated mode: a solver further behind skips to the newest pose
+//   ~max_solver_lag   [s] decimated mode: a solver further behind restarts the lines from statics
+//                     at the newest pose (it could not catch up by solving)
 // Publications: ~wrench, ~wrench_world, ~lines/<line>/cable_state, ~lines/<line>/fairlead_wrench,
 // ~markers (when subscribed), /diagnostics, /tf (optional fairlead and vessel frames), /tf_static
 // (anchors, with the fairlead frames). Services: ~reset (std_srvs/Trigger), ~release (ReleaseLine), ~solve_static
@@ -98,6 +99,13 @@ class VesselNode {
   void pollTf(const ros::WallTimerEvent&);
   void onDiagnosticsTimer(const ros::WallTimerEvent&);
   void reject(const std::string& message, const char* key);
+  /// onMotion but the count of poses received.
+  void onMotionIn(const ros::Time& stamp, const std::string& frame, const geometry_msgs::Pose& pose,
+                  const std::string& field, const core::BodyTwist* twist);
+  /// The sample's solver time: seconds after the first usable pose's stamp (set by it).
+  double sampleTime(const ros::Time& stamp, const core::RigidPose& pose, const std::string& field);
+  /// Decimated mode: the solver fell `lag` seconds behind the newest pose q.
+  void onSolverBehind(const SampleWorker::Sample& q, double lag, long skipped);
   /// The lockstep step of one pose and its outputs (on the solver thread in decimated mode).
   void solveSample(const ros::Time& stamp, const core::RigidPose& pose, const std::string& field,
                    const core::BodyTwist* twist);
@@ -147,11 +155,15 @@ class VesselNode {
   // Threads (decimated mode; uncontended otherwise). Lock order: solver_mutex_, then
   // monitor_mutex_, then answer_mutex_.
   std::mutex solver_mutex_;   ///< lockstep_ and the state above (solver thread, services, diagnostics)
-  std::mutex monitor_mutex_;  ///< monitor_ and the diag_ snapshot
+  std::mutex monitor_mutex_;  ///< monitor_, the diag_ snapshot and the last processed stamp
+  bool have_processed_ = false;
+  ros::Time last_processed_;  ///< stamp of the last pose the solver took (not dropped)
   std::vector<core::LineEventRecord> diag_events_;  ///< as of the last solve (snapshotForDiagnostics)
   std::vector<double> diag_lengths_, diag_rates_;   ///< [m], [m/s] per line, as of the last solve
   std::mutex answer_mutex_;   ///< the fields below
   double loop_back_ = 1.0;    ///< [s] as lockstep's: a stamp back by more is a bag loop, answered
+  bool decimated_ = false;    ///< ~solve_interval > 0 (set in the constructor, then constant)
+  double max_solver_lag_ = 0.0;  ///< [s] ~max_solver_lag (decimated mode)
   core::VesselWrench answer_wrench_;  ///< the last solve's wrench: every pose's answer
   bool answered_any_ = false;
   ros::Time last_answered_;
