@@ -77,14 +77,7 @@ std::function<TopState(double t)> positionTable(const std::vector<TopMotion::Row
   return [tab = table](double t) {
     double p[3], v[3];
     sampleTable(tab, t, p, v);
-    TopState st;
-    st.x = p[0];
-    st.y = p[1];
-    st.z = p[2];
-    st.vx = v[0];
-    st.vy = v[1];
-    st.vz = v[2];
-    return st;
+    return TopState::prescribed(p, v);
   };
 }
 
@@ -120,14 +113,7 @@ std::function<TopState(double t)> velocityTable(const std::vector<TopMotion::Row
     }
     double v[3];
     sampleTable(tab, t, v, nullptr);
-    TopState st;
-    st.x = p[0];
-    st.y = p[1];
-    st.z = p[2];
-    st.vx = v[0];
-    st.vy = v[1];
-    st.vz = v[2];
-    return st;
+    return TopState::prescribed(p, v);
   };
 }
 

@@ -84,14 +84,7 @@ struct SystemDynamics::Impl {
     return [motion, r](double tau) {
       const RigidMotion m = motion(tau);
       const Eigen::Vector3d x = m.pose.apply(r), v = m.pointVelocity(r);
-      TopState s;
-      s.x = x[0];
-      s.y = x[1];
-      s.z = x[2];
-      s.vx = v[0];
-      s.vy = v[1];
-      s.vz = v[2];
-      return s;
+      return TopState::prescribed(x.data(), v.data());
     };
   }
 

@@ -41,14 +41,7 @@ std::function<TopState(double)> SystemDynamics::Impl::endMotion(const Step& s, s
     return [=](double tau) {
       const double w = dt > 0.0 ? std::clamp((tau - t0) / dt, 0.0, 1.0) : 1.0;
       const Eigen::Vector3d x = x0 + w * (x1 - x0), v = v0 + w * (v1 - v0);
-      TopState st;
-      st.x = x[0];
-      st.y = x[1];
-      st.z = x[2];
-      st.vx = v[0];
-      st.vy = v[1];
-      st.vz = v[2];
-      return st;
+      return TopState::prescribed(x.data(), v.data());
     };
   };
   std::function<TopState(double)> f = isVessel(p) ? fairleadMotion(p) : std::function<TopState(double)>(pointMotion());

@@ -19,6 +19,18 @@ struct TopState {
   double vx = 0, vy = 0, vz = 0;      ///< velocity [m/s], the exact time derivative of the position
   double fx = 0, fy = 0, fz = 0;      ///< [N] force applied to the line's top end
   double heading = 0;                 ///< [rad] ship heading ccw from +x (ship tracks), else 0
+
+  /// A prescribed position p and velocity v (3 values each).
+  static TopState prescribed(const double* p, const double* v) {
+    TopState s;
+    s.x = p[0];
+    s.y = p[1];
+    s.z = p[2];
+    s.vx = v[0];
+    s.vy = v[1];
+    s.vz = v[2];
+    return s;
+  }
 };
 
 /// The top state as a function of time t [s] >= 0 for motion `m` started at the static top
