@@ -3,6 +3,8 @@
 #include <utility>
 #include <vector>
 
+#include <pthread.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -10,8 +12,8 @@
 namespace mooring_dynamics {
 namespace ros_bridge {
 
-SampleWorker::SampleWorker(Solve solve, Behind behind, double max_lag)
-    : solve_(std::move(solve)), behind_(std::move(behind)), max_lag_(max_lag) {
+SampleWorker::SampleWorker(Solve solve, Behind behind, double max_lag, double wake_interval)
+    : solve_(std::move(solve)), behind_(std::move(behind)), max_lag_(max_lag), wake_interval_(wake_interval) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -26,11 +28,18 @@ SampleWorker::~SampleWorker() {
 }
 
 void SampleWorker::push(Sample s) {
+  bool wake;
   {
     std::lock_guard<std::mutex> l(m_);
+    wake = !woken_any_ || s.stamp < last_wake_ || (s.stamp - last_wake_).toSec() >= wake_interval_;
+    if (wake) {
+      woken_any_ = true;
+      woke_ = true;
+      last_wake_ = s.stamp;
+    }
     queue_.push_back(std::move(s));
   }
-  cv_.notify_one();
+  if (wake) cv_.notify_one();
 }
 
 std::size_t SampleWorker::pending() const {
@@ -40,13 +49,22 @@ std::size_t SampleWorker::pending() const {
 
 void SampleWorker::drain() {
   std::unique_lock<std::mutex> l(m_);
+  flush_ = true;
+  cv_.notify_one();
   idle_cv_.wait(l, [this] { return stop_ || (queue_.empty() && !busy_); });
+  flush_ = false;
 }
 
 void SampleWorker::run() {
-  // Below the receiving thread in the scheduler (Linux: a thread's own nice value), so that on a
-  // busy host a pose is answered before the solve in progress goes on. Failing to: no harm.
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kNice);
+  // Below the receiving thread in the scheduler, so that a pose is answered before the solve in
+  // progress goes on: Linux's SCHED_IDLE (any ordinary thread that wakes preempts it; it runs on
+  // what is left of the cores), else a nice value of kNice. Failing to: no harm.
+#ifdef SCHED_IDLE
+  sched_param none{};
+  none.sched_priority = 0;
+  if (pthread_setschedparam(pthread_self(), SCHED_IDLE, &none) != 0)
+#endif
+    setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kNice);
   std::vector<Sample> batch;
   auto idle = [this] {  // (under m_)
     busy_ = false;
@@ -56,7 +74,9 @@ void SampleWorker::run() {
     {
       std::unique_lock<std::mutex> l(m_);
       idle();
-      cv_.wait(l, [this] { return stop_ || !queue_.empty(); });
+      // Woken by a sample that asks for it (push), by drain or stop: then everything waiting.
+      cv_.wait(l, [this] { return stop_ || (!queue_.empty() && (woke_ || flush_)); });
+      woke_ = false;
       if (stop_) return;
       batch.assign(std::make_move_iterator(queue_.begin()), std::make_move_iterator(queue_.end()));
       queue_.clear();

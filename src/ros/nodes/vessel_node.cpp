@@ -229,7 +229,7 @@ VesselNode::VesselNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
           solveSample(q.stamp, q.pose, q.field, q.has_twist ? &q.twist : nullptr);
         },
         [this](const SampleWorker::Sample& q, double lag, long skipped) { onSolverBehind(q, lag, skipped); },
-        max_solver_lag);
+        max_solver_lag, 0.5 * lo.solve_interval);
     input += "; decimated: a solve every " + formatNumber(lo.solve_interval) +
              " s on a solver thread, every pose answered at once from the last solve (~solve_interval)";
   }
