@@ -1,13 +1,13 @@
 // 3-D dynamic-solver cost (equations3d.hpp: N = 13 plus coordinates, generalized-alpha, Newton
 // with adaptive relaxation, banded LU with kl = 25, ku = 21).
 //
-// BM_Dynamic3DStepCost/<nodes>: cost of one time step against node count on the grounded chain
+// BM_Dynamic3DStepCost/<nodes>/<threads>: cost of one time step against node count on the grounded chain
 // of bench_static / bench_dynamic (bench_problems.hpp), model: 3d, with a uniform 0.5 m/s current
 // at 45 deg to the line's plane (a non-planar line), heaved at the top, z = z0 + 1 m
 // (1 - cos(2 pi t / 10 s)) from rest, lambda_inf = -0.5, dt = 0.1 s, 20 steps per benchmark
 // iteration. Only advanceTo() is timed. Counters as in bench_dynamic: nodes, steps, cuts,
 // newton_iters, newton_per_step, ns_per_step_node, and ns_per_iter_node (wall time per Newton
-// iteration and node).
+// iteration and node). <threads>: dynamics.threads (1 or 2, same results).
 //
 // BM_TowedArrayCase1RealTimeFactor: the paper's A.1 Case 1 (config/towed_array.yaml), 940 s.
 //
@@ -61,7 +61,8 @@ md::Problem heavedChain3D(int nodes) {
 }
 
 void BM_Dynamic3DStepCost(benchmark::State& state) {
-  const md::Problem problem = heavedChain3D(static_cast<int>(state.range(0)));
+  md::Problem problem = heavedChain3D(static_cast<int>(state.range(0)));
+  problem.dynamics.threads = static_cast<int>(state.range(1));
   long steps = 0, cuts = 0, newton = 0, iterations = 0;
   std::size_t node_count = 0;
   double seconds = 0.0;
@@ -147,7 +148,7 @@ void BM_STether3DWavesRealTimeFactor(benchmark::State& state) {
   timeWholeRuns(state, problem);
 }
 
-BENCHMARK(BM_Dynamic3DStepCost)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(800)->UseManualTime()
+BENCHMARK(BM_Dynamic3DStepCost)->ArgsProduct({{50, 100, 200, 400, 800}, {1, 2}})->ArgNames({"nodes", "threads"})->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_ChainMooring3DRealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_TowedArrayCase1RealTimeFactor)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);

@@ -219,7 +219,7 @@ void writeDynamicSummaryJson(std::ostream& f, const core::Problem& p, const core
     << "  \"fallback_steps\": " << r.fallback_steps << ",\n"
     << "  \"fallback_substeps\": " << r.fallback_substeps << ",\n"
     << "  \"top_off_path\": " << r.top_off_path << ",\n"
-    << "  \"threads\": " << d.threads << ",\n"
+    << "  \"threads\": " << r.threads << ",\n"
     << "  \"wall_seconds\": " << jsonNum(r.wall_seconds) << ",\n"
     << "  \"real_time_factor\": " << jsonNum(g.rtf) << ",\n"
     << "  \"record_s\": [";
@@ -262,7 +262,12 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
   o << "\n";
   o << "  wall time      " << fmtNum("%.3g", r.wall_seconds) << " s, real-time factor "
     << (std::isfinite(g.rtf) ? fmtNum("%.3g", g.rtf) : std::string("inf"))
-    << (d.threads > 1 ? ", " + std::to_string(d.threads) + " threads" : std::string()) << "\n";
+    << (r.threads > 1 ? ", " + std::to_string(r.threads) + " threads" : std::string())
+    << (r.threads < d.threads ? ", 1 thread of the " + std::to_string(d.threads) +
+                                    " asked (a 2-D line of fewer than " +
+                                    std::to_string(core::DynamicSolver2D::kMinNodesForTwoThreads) + " nodes runs faster on one)"
+                              : std::string())
+    << "\n";
   return o.str();
 }
 

@@ -328,6 +328,7 @@ void DynamicSolver2D::setTopInput(std::function<TopInput(double)> source) { impl
 double DynamicSolver2D::time() const { return impl_->t; }
 const StaticResult& DynamicSolver2D::initialStatic() const { return impl_->statics; }
 DynamicSolver2D::Totals DynamicSolver2D::totals() const { return impl_->totals; }
+int DynamicSolver2D::threads() const { return impl_->fork ? 2 : 1; }
 
 std::vector<double> DynamicSolver2D::nodeArclengths() const {
   std::vector<double> s;

@@ -158,7 +158,8 @@ DynamicSolver2D::DynamicSolver2D(const Problem& problem) : impl_(std::make_uniqu
     im.waves = WaveField(problem.environment.waves, problem.environment.depth, problem.environment.gravity);
   im.wave_cache = WaveVelocityCache(&im.waves, im.mesh.nodes.size());
   im.current = CurrentProfile(problem.environment.current);
-  if (im.opt.threads > 1) {  // the second thread: the upper half of every iteration
+  // The second thread takes the upper half of every iteration, on lines long enough for it to pay.
+  if (im.opt.threads > 1 && im.nodes() >= DynamicSolver2D::kMinNodesForTwoThreads) {
     im.fork = std::make_unique<ForkJoin>();
     im.newton_matrix.setParallel(im.fork.get());
   }

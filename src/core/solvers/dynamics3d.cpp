@@ -370,6 +370,7 @@ double DynamicSolver3D::winchRate() const {
 }
 const StaticResult& DynamicSolver3D::initialStatic() const { return impl_->statics; }
 DynamicSolver3D::Totals DynamicSolver3D::totals() const { return impl_->totals; }
+int DynamicSolver3D::threads() const { return impl_->fork ? 2 : 1; }
 
 std::vector<double> DynamicSolver3D::nodeArclengths() const {
   std::vector<double> s;

@@ -317,6 +317,7 @@ DynamicSeries runDynamicWith(const Problem& problem, const std::function<void(do
   out.fallback_steps = tot.fallback_steps;
   out.fallback_substeps = tot.fallback_substeps;
   out.top_off_path = tot.top_off_path;
+  out.threads = solver.threads();
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;
 }

@@ -77,6 +77,13 @@ class DynamicSolver2D {
     long top_off_path = 0;
   };
   Totals totals() const;
+  /// Threads the solver runs on: dynamics.threads, but 1 for a line of fewer than
+  /// kMinNodesForTwoThreads nodes (the second thread costs more than it takes off there).
+  int threads() const;
+  /// Nodes from which a second thread pays on a 2-D line (scripts/threads_bench, 2-core host:
+  /// 50 and 100 nodes 2.2 and 1.7 times slower on two threads, A.3's 170 nodes 1.15 times
+  /// slower, 200 nodes 0.79, 274 (A.2) 0.87, 500-1000 0.87, 2000 0.50).
+  static constexpr int kMinNodesForTwoThreads = 200;
 
   struct Impl;  ///< solver state (opaque; defined in dynamics2d.cpp)
 
@@ -112,6 +119,7 @@ struct DynamicSeries {
   /// the explicit sub-steps they took.
   long fallback_steps = 0, fallback_substeps = 0;
   long top_off_path = 0;  ///< converged implicit steps refused: the top node off its path (3-D)
+  int threads = 1;        ///< threads the solver ran on (DynamicSolver2D::threads)
   double wall_seconds = 0.0;
 };
 

@@ -80,6 +80,9 @@ class DynamicSolver3D {
 
   using Totals = DynamicSolver2D::Totals;
   Totals totals() const;
+  /// Threads the solver runs on (dynamics.threads: a second thread pays on a 3-D line of any
+  /// length, scripts/threads_bench).
+  int threads() const;
 
   /// The time-stepping state (time, unknowns and rates, the previous level's weighted rows), to
   /// try a step and go back: a partitioned coupling (systems of lines) re-runs the same step with
