@@ -1,4 +1,5 @@
-// BandedMatrix (LAPACK band storage, dgbtrf/dgbtrs) against dense Eigen linear algebra.
+// BandedMatrix (LAPACK band storage, dgbtrf/dgbtrs; the block elimination and its solves) against
+// dense Eigen linear algebra.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -435,4 +436,52 @@ TEST(BandedMatrix, KeptPivotGuessesGiveTheSearchsFactorBitForBit) {
       for (int i = 0; i < n; ++i) ASSERT_EQ(x[i], y[i]) << "nodes " << nodes << " round " << round << " row " << i;
     }
   }
+}
+
+// A factor solved again (modified Newton keeps one across iterations) solves with its nodes'
+// inverse diagonal blocks from the second solve on (banded_matrix.cpp, block_lu_inverse.hpp):
+// the same solution as the first solve's substitution to rounding, the residual of a
+// backward-stable solve, and bit for bit the same with the sweeps on two threads, for every
+// structure, one-ended (fewer than four nodes) and two-ended.
+TEST(BandedMatrix, SecondSolveWithInverseBlocksAgreesWithSubstitution) {
+  struct Structure {
+    int block, lead;
+  };
+  // Random O(1) entries, nodes <= 60: well conditioned (kSolveRelTol's reasoning); the two
+  // solutions differ by the rounding of two backward-stable solves.
+  constexpr double kAgreementTol = 1e-9;
+  mooring_dynamics::core::ForkJoin fork;
+  std::mt19937 rng(59);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const Structure s : {Structure{8, 5}, Structure{16, 10}, Structure{16, 7}})
+    for (int nodes : {1, 2, 3, 4, 9, 60}) {
+      const int n = s.block * nodes, kl = s.lead + s.block - 1, ku = 2 * s.block - 1 - s.lead;
+      BandedMatrix A(n, kl, ku), B(n, kl, ku);
+      A.setBlockStructure(s.block, s.lead);
+      B.setBlockStructure(s.block, s.lead);
+      B.setParallel(&fork);
+      Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          if (A.inBand(i, j) && A.inPattern(i, j)) D(i, j) = A.at(i, j) = B.at(i, j) = u(rng);
+      ASSERT_EQ(A.factorize(), 0);
+      ASSERT_EQ(B.factorize(), 0);
+      const std::string what = "block " + std::to_string(s.block) + " lead " + std::to_string(s.lead) +
+                               " nodes " + std::to_string(nodes);
+      const Eigen::VectorXd b = randomVector(n, rng);
+      Eigen::VectorXd first = b;
+      A.solve(first);  // substitution
+      for (int again = 0; again < 3; ++again) {
+        const Eigen::VectorXd c = again == 0 ? b : randomVector(n, rng);
+        Eigen::VectorXd x = c, y = c;
+        B.solve(y);
+        if (again == 0) B.solve(y = c);  // B's first solve was substitution: this one takes the inverses
+        A.solve(x);
+        for (int i = 0; i < n; ++i) ASSERT_EQ(x[i], y[i]) << what << " row " << i;  // one thread or two
+        EXPECT_LE((D * x - c).norm(), kSolveRelTol * (D.norm() * x.norm() + c.norm())) << what;
+        if (again == 0) {
+          EXPECT_LE((x - first).norm(), kAgreementTol * first.norm()) << what;
+        }
+      }
+    }
 }

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "block_lu.hpp"
+#include "block_lu_inverse.hpp"
 #include "mooring_dynamics/core/numerics/fork_join.hpp"
 
 extern "C" {
@@ -124,28 +125,65 @@ int twistedFactor(Kernel kernel, int nodes, int meet, const BlockStorage& lower,
   return blockFactor<NB, LEAD>(kernel, NB * (meet + 1), lower, Panels::kLast);
 }
 
+/// A factor's storage for the solve: the kernel's (s) and, once built, the nodes' inverse
+/// forms (block_lu_inverse.hpp; null: substitution).
+struct SolveStorage {
+  const BlockStorage& s;
+  const double* form;
+};
+
+/// The solve forms of nodes [0, count) of a factor of `nodes` nodes, from its kernel's storage.
 template <int NB, int LEAD>
-void twistedSolve(Kernel kernel, int nodes, int meet, const BlockStorage& lower, const BlockStorage& mirror,
+void buildForms(Kernel kernel, int count, int nodes, const BlockStorage& s, double* form) {
+  using namespace block_lu;
+  if (kernel == Kernel::kColumns)
+    buildInverseForms<NB, LEAD>(count, nodes, ColumnLayout<NB, LEAD>{s.panels}, s.perm, s.inv_diag, form);
+  else if (kernel == Kernel::kEigen)
+    buildInverseForms<NB, LEAD>(count, nodes, PanelLayout<NB, LEAD>{s.panels}, s.perm, s.inv_diag, form);
+  else
+    buildInverseForms<NB, LEAD>(count, nodes, RowLayout<NB, LEAD>{s.rows, s.carried}, s.perm, s.inv_diag, form);
+}
+
+template <int NB, int LEAD>
+void forward(Kernel kernel, int n, const SolveStorage& st, double* b, Panels part, double* carry) {
+  using namespace block_lu;
+  if (!st.form) return blockForward<NB, LEAD>(kernel, n, st.s, b, part, carry);
+  if (kernel == Kernel::kColumns)
+    inverseForward<NB, LEAD, ColumnLayout<NB, LEAD>>(n, st.form, st.s.perm, b, part, carry);
+  else if (kernel == Kernel::kEigen)
+    inverseForward<NB, LEAD, PanelLayout<NB, LEAD>>(n, st.form, st.s.perm, b, part, carry);
+  else
+    inverseForward<NB, LEAD, RowLayout<NB, LEAD>>(n, st.form, st.s.perm, b, part, carry);
+}
+
+template <int NB, int LEAD>
+void backward(Kernel kernel, int from, int to, const SolveStorage& st, double* b, const double* x_above) {
+  if (!st.form) return blockBackward<NB, LEAD>(kernel, from, to, st.s, b, x_above);
+  block_lu::inverseBackward<NB, LEAD>(from, to, st.form, b, x_above);
+}
+
+template <int NB, int LEAD>
+void twistedSolve(Kernel kernel, int nodes, int meet, const SolveStorage& lower, const SolveStorage& mirror,
                   double* b, double* mb, ForkJoin* fork) {
   constexpr int LM = NB - LEAD;
   const int mirror_nodes = nodes - meet;
   double carry_lower[LEAD], carry_upper[LM];
-  auto lowerForward = [&] { blockForward<NB, LEAD>(kernel, NB * (meet + 1), lower, b, Panels::kInner, carry_lower); };
+  auto lowerForward = [&] { forward<NB, LEAD>(kernel, NB * (meet + 1), lower, b, Panels::kInner, carry_lower); };
   auto upperForward = [&] {
     for (int q = 0; q < LM; ++q) mb[q] = b[LEAD + NB * (nodes - 1) + q];
     for (int i = 0; i + 1 < mirror_nodes; ++i)
       for (int r = 0; r < NB; ++r) mb[LM + NB * i + r] = b[LEAD + NB * (nodes - 2 - i) + r];
-    blockForward<NB, LM>(kernel, NB * mirror_nodes, mirror, mb, Panels::kInner, carry_upper);
+    forward<NB, LM>(kernel, NB * mirror_nodes, mirror, mb, Panels::kInner, carry_upper);
   };
   runBoth(fork, lowerForward, upperForward);
   // The meeting node: its own rows' right-hand side from the mirror, then its x.
   for (int q = 0; q < LM; ++q) b[LEAD + NB * meet + q] = carry_upper[q];
-  blockForward<NB, LEAD>(kernel, NB * (meet + 1), lower, b, Panels::kLast, carry_lower);
-  blockBackward<NB, LEAD>(kernel, meet, meet, lower, b, nullptr);
+  forward<NB, LEAD>(kernel, NB * (meet + 1), lower, b, Panels::kLast, carry_lower);
+  backward<NB, LEAD>(kernel, meet, meet, lower, b, nullptr);
   const double* const x_meet = b + NB * meet;
-  auto lowerBack = [&] { blockBackward<NB, LEAD>(kernel, meet - 1, 0, lower, b, x_meet); };
+  auto lowerBack = [&] { backward<NB, LEAD>(kernel, meet - 1, 0, lower, b, x_meet); };
   auto upperBack = [&] {
-    blockBackward<NB, LM>(kernel, mirror_nodes - 2, 0, mirror, mb, x_meet);
+    backward<NB, LM>(kernel, mirror_nodes - 2, 0, mirror, mb, x_meet);
     for (int i = 0; i + 1 < mirror_nodes; ++i)
       for (int k = 0; k < NB; ++k) b[NB * (nodes - 1 - i) + k] = mb[NB * i + k];
   };
@@ -169,14 +207,25 @@ int factorBlocks(Kernel kernel, int n, int meet, const BlockStorage& s, const Bl
 }
 
 template <int NB, int LEAD>
-void solveBlocks(Kernel kernel, int n, int meet, const BlockStorage& s, const BlockStorage& mirror, double* b,
+void solveBlocks(Kernel kernel, int n, int meet, const SolveStorage& s, const SolveStorage& mirror, double* b,
                  double* mb, ForkJoin* fork) {
   if (meet == 0) {
-    blockForward<NB, LEAD>(kernel, n, s, b, Panels::kAll, nullptr);
-    blockBackward<NB, LEAD>(kernel, n / NB - 1, 0, s, b, nullptr);
+    forward<NB, LEAD>(kernel, n, s, b, Panels::kAll, nullptr);
+    backward<NB, LEAD>(kernel, n / NB - 1, 0, s, b, nullptr);
     return;
   }
   twistedSolve<NB, LEAD>(kernel, n / NB, meet, s, mirror, b, mb, fork);
+}
+
+/// The solve forms of a factor: one-ended, of all nodes; two-ended, of the lower sweep's nodes
+/// 0 .. meet and of the mirror's inner nodes (each sweep on its own thread when there is a fork).
+template <int NB, int LEAD>
+void buildAllForms(Kernel kernel, int n, int meet, const BlockStorage& s, const BlockStorage& mirror, double* form,
+                   double* mirror_form, ForkJoin* fork) {
+  const int nodes = n / NB;
+  if (meet == 0) return buildForms<NB, LEAD>(kernel, nodes, nodes, s, form);
+  runBoth(fork, [&] { buildForms<NB, LEAD>(kernel, meet + 1, meet + 1, s, form); },
+          [&] { buildForms<NB, NB - LEAD>(kernel, nodes - meet - 1, nodes - meet, mirror, mirror_form); });
 }
 
 }  // namespace
@@ -287,6 +336,7 @@ int BandedMatrix::factorize() {
     if (info < 0) throw std::logic_error("dgbtrf: illegal argument");
   }
   factorized_ = (info == 0);
+  solves_ = 0;
   return info;
 }
 
@@ -298,12 +348,33 @@ void BandedMatrix::solve(Eigen::VectorXd& b) const {
   if (block_ > 0) {
     const BlockStorage st = storageOf(rows_, carried_, panels_, inv_diag_, perm_);
     const BlockStorage mirror = storageOf(mirror_rows_, mirror_carried_, mirror_panels_, mirror_inv_diag_, mirror_perm_);
+    const Kernel kernel = static_cast<Kernel>(kernel_);
+    // The second solve with a factor builds its inverse forms (block_lu_inverse.hpp), which that
+    // solve and the later ones use: a factor solved once (plain Newton) is not worth them.
+    if (++solves_ == kSolvesForInverse) {
+      const std::size_t nodes = static_cast<std::size_t>(n_ / block_);
+      if (block_ == 8 && lead_ == 5) {
+        form_.resize(nodes * block_lu::InverseForm<8, 5>::kSize);
+        mirror_form_.resize(nodes * block_lu::InverseForm<8, 3>::kSize);
+        buildAllForms<8, 5>(kernel, n_, meet_, st, mirror, form_.data(), mirror_form_.data(), fork_);
+      } else if (block_ == 16 && lead_ == 10) {
+        form_.resize(nodes * block_lu::InverseForm<16, 10>::kSize);
+        mirror_form_.resize(nodes * block_lu::InverseForm<16, 6>::kSize);
+        buildAllForms<16, 10>(kernel, n_, meet_, st, mirror, form_.data(), mirror_form_.data(), fork_);
+      } else {
+        form_.resize(nodes * block_lu::InverseForm<16, 7>::kSize);
+        mirror_form_.resize(nodes * block_lu::InverseForm<16, 9>::kSize);
+        buildAllForms<16, 7>(kernel, n_, meet_, st, mirror, form_.data(), mirror_form_.data(), fork_);
+      }
+    }
+    const bool inverse = solves_ >= kSolvesForInverse;
+    const SolveStorage s{st, inverse ? form_.data() : nullptr}, m{mirror, inverse ? mirror_form_.data() : nullptr};
     if (block_ == 8 && lead_ == 5)
-      solveBlocks<8, 5>(static_cast<Kernel>(kernel_), n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
+      solveBlocks<8, 5>(kernel, n_, meet_, s, m, b.data(), mirror_b_.data(), fork_);
     else if (block_ == 16 && lead_ == 10)
-      solveBlocks<16, 10>(static_cast<Kernel>(kernel_), n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
+      solveBlocks<16, 10>(kernel, n_, meet_, s, m, b.data(), mirror_b_.data(), fork_);
     else
-      solveBlocks<16, 7>(static_cast<Kernel>(kernel_), n_, meet_, st, mirror, b.data(), mirror_b_.data(), fork_);
+      solveBlocks<16, 7>(kernel, n_, meet_, s, m, b.data(), mirror_b_.data(), fork_);
     return;
   }
   const int kv = kl_ + ku_;

@@ -155,6 +155,11 @@ class BandedMatrix {
   std::vector<double> mirror_inv_diag_;
   std::vector<int> mirror_perm_;
   mutable std::vector<double> mirror_b_;  ///< solve: the mirror's right-hand side
+  /// Block structure: solves since the last factorize(); from the kSolvesForInverse-th on, the
+  /// solves use the nodes' inverse diagonal blocks (form_, mirror_form_; see solve()).
+  static constexpr int kSolvesForInverse = 2;
+  mutable int solves_ = 0;
+  mutable std::vector<double, CacheLineAllocator<double>> form_, mirror_form_;
   ForkJoin* fork_ = nullptr;
 
 };
