@@ -91,45 +91,71 @@ MD_INLINE void product(const double* A, const double* x, double* y) {
 /// block_lu.hpp), `nodes` nodes in all: L21 for every node but the last (whose panel has no
 /// leftover rows). Entries the blocks do not have (above L11's diagonal, below U11's, the
 /// padding) are zero.
+///
+/// The inverses are formed a column at a time as rows of their transposes, eight columns of the
+/// identity side by side: column c of U11^{-1} is row c of Z = (U11^T)^{-1},
+/// Z(c, :) = (e_c - sum_{k < c} U(k, c) Z(k, :)) / U(c, c), and column c of L11^{-1} is row c of
+/// (L11^T)^{-1}, from the last row up: Z(c, :) = e_c - sum_{k > c} L(k, c) Z(k, :).
 template <int NB, int LEAD, class Layout>
 MD_INVERSE_CLONES void buildInverseForms(int count, int nodes, const Layout& layout, const int* perm,
                                          const double* inv_diag, double* form) {
   using F = InverseForm<NB, LEAD>;
   constexpr int M = LEAD + NB, S = Layout::stride, RP = F::kRows, LP = F::kLeadRows;
+#if defined(__GNUC__) || defined(__clang__)
+  static_assert(RP == NB, "blocks of a multiple of eight unknowns: a column of an inverse is whole lanes");
+  constexpr int V = RP / 8;
+#endif
   for (int j = 0; j < count; ++j) {
     const int* const pj = perm + M * j;
     const double* const rd = inv_diag + NB * j;
     double* const f = form + F::kSize * static_cast<std::size_t>(j);
-    for (std::size_t e = 0; e < F::kSize; ++e) f[e] = 0.0;
     const double* R[M];
     const int rows = j + 1 < nodes ? M : NB;
     for (int i = 0; i < rows; ++i) R[i] = layout.row(j, pj, i);
-    double* const Li = f + F::kLinv;
+#if defined(__GNUC__) || defined(__clang__)
+    Lane8* const Ui = reinterpret_cast<Lane8*>(__builtin_assume_aligned(f + F::kUinv, 64));
+    Lane8* const Li = reinterpret_cast<Lane8*>(__builtin_assume_aligned(f + F::kLinv, 64));
+    for (int c = 0; c < NB; ++c) {
+      Lane8 z[V];
+      for (int v = 0; v < V; ++v) z[v] = Lane8{};
+      z[c / 8][c % 8] = 1.0;
+      for (int k = 0; k < c; ++k) {
+        const double u = R[k][c * S];
+        for (int v = 0; v < V; ++v) z[v] -= u * Ui[k * V + v];
+      }
+      for (int v = 0; v < V; ++v) Ui[c * V + v] = z[v] * rd[c];
+    }
+    for (int c = NB - 1; c >= 0; --c) {
+      Lane8 z[V];
+      for (int v = 0; v < V; ++v) z[v] = Lane8{};
+      z[c / 8][c % 8] = 1.0;
+      for (int k = c + 1; k < NB; ++k) {
+        const double l = R[k][c * S];
+        for (int v = 0; v < V; ++v) z[v] -= l * Li[k * V + v];
+      }
+      for (int v = 0; v < V; ++v) Li[c * V + v] = z[v];
+    }
+#else
     double* const Ui = f + F::kUinv;
-    // L11^{-1}, column by column: X(c, c) = 1, X(i, c) = -sum_{k = c}^{i - 1} L(i, k) X(k, c).
+    double* const Li = f + F::kLinv;
     for (int c = 0; c < NB; ++c) {
-      Li[c * RP + c] = 1.0;
-      for (int i = c + 1; i < NB; ++i) {
-        double s = 0.0;
-        for (int k = c; k < i; ++k) s += R[i][k * S] * Li[c * RP + k];
-        Li[c * RP + i] = -s;
-      }
+      for (int r = 0; r < RP; ++r) Ui[c * RP + r] = r == c ? 1.0 : 0.0;
+      for (int k = 0; k < c; ++k)
+        for (int r = 0; r < RP; ++r) Ui[c * RP + r] -= R[k][c * S] * Ui[k * RP + r];
+      for (int r = 0; r < RP; ++r) Ui[c * RP + r] *= rd[c];
     }
-    // U11^{-1}, column by column from the diagonal up: X(c, c) = 1 / U(c, c),
-    // X(i, c) = -(1 / U(i, i)) sum_{k = i + 1}^{c} U(i, k) X(k, c).
-    for (int c = 0; c < NB; ++c) {
-      Ui[c * RP + c] = rd[c];
-      for (int i = c - 1; i >= 0; --i) {
-        double s = 0.0;
-        for (int k = i + 1; k <= c; ++k) s += R[i][k * S] * Ui[c * RP + k];
-        Ui[c * RP + i] = -(rd[i] * s);
-      }
+    for (int c = NB - 1; c >= 0; --c) {
+      for (int r = 0; r < RP; ++r) Li[c * RP + r] = r == c ? 1.0 : 0.0;
+      for (int k = c + 1; k < NB; ++k)
+        for (int r = 0; r < RP; ++r) Li[c * RP + r] -= R[k][c * S] * Li[k * RP + r];
     }
+#endif
+    // Z above is the transpose: Z(c, r) = X(r, c), stored at X's column-major place c RP + r.
     for (int c = 0; c < NB; ++c)
       for (int i = 0; i < NB; ++i) f[F::kU12 + c * RP + i] = R[i][(NB + c) * S];
     if (rows == M)
       for (int c = 0; c < NB; ++c)
-        for (int r = 0; r < LEAD; ++r) f[F::kL21 + c * LP + r] = R[NB + r][c * S];
+        for (int r = 0; r < LP; ++r) f[F::kL21 + c * LP + r] = r < LEAD ? R[NB + r][c * S] : 0.0;
   }
 }
 

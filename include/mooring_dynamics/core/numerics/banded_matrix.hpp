@@ -157,7 +157,7 @@ class BandedMatrix {
   mutable std::vector<double> mirror_b_;  ///< solve: the mirror's right-hand side
   /// Block structure: solves since the last factorize(); from the kSolvesForInverse-th on, the
   /// solves use the nodes' inverse diagonal blocks (form_, mirror_form_; see solve()).
-  static constexpr int kSolvesForInverse = 2;
+  static constexpr int kSolvesForInverse = 3;
   mutable int solves_ = 0;
   mutable std::vector<double, CacheLineAllocator<double>> form_, mirror_form_;
   ForkJoin* fork_ = nullptr;
