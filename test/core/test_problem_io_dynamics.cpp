@@ -9,45 +9,14 @@
 #include <vector>
 
 #include "mooring_dynamics/core/io/problem_io.hpp"
+#include "problem_io_test_util.hpp"
 
 using namespace mooring_dynamics::core;
+using namespace mooring_dynamics::core::testing_util;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-/// Load `text` and return the ProblemError message ("" if it loaded).
-std::string errorOf(const std::string& text) {
-  try {
-    loadProblemFromString(text);
-  } catch (const ProblemError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("WRONG EXCEPTION TYPE: ") + e.what();
-  }
-  return "";
-}
-
-// A minimal valid problem, for errors easier to write from scratch.
-const char* kMinimal = R"(
-materials:
-  chain: {EA: 6.44e7, EI: 10, mass: 3.73, wet_weight: 31.85, diameter: 0.0495, cdn: 0.5, cdt: 0.05}
-line:
-  - {material: chain, length: 150}
-top:
-  position: {x: 100, z: 0}
-)";
-
-std::string minimalWith(const std::string& extra) { return std::string(kMinimal) + extra; }
-
-#define EXPECT_ERROR_HAS(text, ...)                                              \
-  do {                                                                           \
-    const std::string msg_ = errorOf(text);                                      \
-    ASSERT_FALSE(msg_.empty()) << "loaded without error";                        \
-    for (const std::string& part_ : std::vector<std::string>{__VA_ARGS__})       \
-      EXPECT_NE(msg_.find(part_), std::string::npos)                             \
-          << "message \"" << msg_ << "\" lacks \"" << part_ << "\"";             \
-  } while (0)
 
 }  // namespace
 

@@ -12,6 +12,8 @@
 // a stamp going back) are dropped, counted in /diagnostics, and the wrench stays finite. Both:
 // ~solve_static (VesselStatics) returns the core's static wrench bit for bit and a stiffness
 // matrix positive in surge, sway and yaw.
+// The spread mooring in an Hs 6 m storm from a bag: test_vessel_node_storm.cpp. The track, the
+// core reference and the listener: vessel_node_test_util.hpp.
 #include <gtest/gtest.h>
 
 #include <charconv>
@@ -20,7 +22,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <map>
 #include <sstream>
 #include <string>
@@ -41,105 +42,15 @@
 #include "mooring_dynamics/Winch.h"
 #include "mooring_dynamics/VesselStatics.h"
 #include "mooring_dynamics/core/io/problem_io.hpp"
-#include "mooring_dynamics/core/model/storm_motion.hpp"
-#include "mooring_dynamics/core/solvers/vessel_lockstep.hpp"
 #include "mooring_dynamics/core/solvers/vessel_statics.hpp"
-#include "mooring_dynamics/ros/publish/converter.hpp"
+#include "vessel_node_test_util.hpp"
 
 namespace core = mooring_dynamics::core;
 namespace fs = std::filesystem;
 using mooring_dynamics::VesselStatics;
+using namespace vessel_node_test;
 
 namespace {
-
-constexpr int kSamples = 40;      // 4 s at 10 Hz
-constexpr double kDt = 0.1;       // [s] sample spacing = the file's dt
-const ros::Time kStart(3000.0);   // first stamp (sim time in the bag)
-constexpr double kPi = 3.14159265358979323846;
-
-std::string g_mode = "live", g_node = "/vessel";
-std::string g_source = "pose";  // live: pose (PoseStamped), odometry (Odometry) or tf (world -> base_link)
-bool g_twist = false;
-std::string g_fail_line;  // the node's ~test_fail_line (failure injection at solver time 1 s), or empty
-constexpr double kFailTime = 1.0;  // [s] the node's ~test_fail_time in test_vessel_node.fail.test           // odometry: the node uses the twist (~use_twist true); core and CLI get it too
-const std::string kProblem = std::string(MD_SOURCE_DIR) + "/test/data/small_vessel.yaml";
-
-struct Sample {
-  ros::Time stamp;
-  geometry_msgs::Pose pose;
-  core::BodyTwist twist;  ///< the track's exact twist, body frame (REP 105, as in nav_msgs/Odometry)
-};
-
-/// Surge 0.5 m (period 4 s) and yaw 2 deg (period 5 s), from the file's pose (0, 0, 0, yaw 0).
-std::vector<Sample> track() {
-  std::vector<Sample> v;
-  for (int k = 0; k < kSamples; ++k) {
-    const double t = kDt * k;
-    const double yaw = 2.0 * kPi / 180.0 * std::sin(2 * kPi * t / 5.0);
-    Sample s;
-    s.stamp = kStart + ros::Duration(t);
-    s.pose.position.x = 0.5 * std::sin(2 * kPi * t / 4.0);
-    s.pose.orientation.z = std::sin(0.5 * yaw);
-    s.pose.orientation.w = std::cos(0.5 * yaw);
-    // The derivatives: surge velocity (world x) turned into the body by -yaw; yaw rate about z.
-    const double xdot = 0.5 * (2 * kPi / 4.0) * std::cos(2 * kPi * t / 4.0);
-    const double yawdot = 2.0 * kPi / 180.0 * (2 * kPi / 5.0) * std::cos(2 * kPi * t / 5.0);
-    s.twist.linear = Eigen::Vector3d(std::cos(yaw) * xdot, -std::sin(yaw) * xdot, 0.0);
-    s.twist.angular = Eigen::Vector3d(0.0, 0.0, yawdot);
-    v.push_back(s);
-  }
-  return v;
-}
-
-geometry_msgs::PoseStamped toMsg(const Sample& s) {
-  geometry_msgs::PoseStamped m;
-  m.header.stamp = s.stamp;
-  m.header.frame_id = "world";
-  m.pose = s.pose;
-  return m;
-}
-
-/// The 12 numbers of a wrench row: body force, body moment, world force, world moment.
-using Row = std::vector<double>;
-Row rowOf(const geometry_msgs::WrenchStamped& b, const geometry_msgs::WrenchStamped& w) {
-  return {b.wrench.force.x,  b.wrench.force.y,  b.wrench.force.z,  b.wrench.torque.x, b.wrench.torque.y, b.wrench.torque.z,
-          w.wrench.force.x,  w.wrench.force.y,  w.wrench.force.z,  w.wrench.torque.x, w.wrench.torque.y, w.wrench.torque.z};
-}
-
-/// core::VesselLockstep on the same samples, as the node feeds them (time = stamp - first stamp).
-std::vector<Row> coreSeries(const std::vector<Sample>& tr, bool with_twist = g_twist,
-                            bool with_fail = !g_fail_line.empty(), std::vector<std::vector<double>>* tops = nullptr) {
-  core::SystemProblem s = core::loadSystemFromFile(kProblem);
-  core::DynamicOptions dyn = s.dynamics;
-  dyn.threads = 1;
-  core::VesselLockstepOptions lo;
-  lo.threads = 1;
-  core::VesselLockstep run(s, dyn, lo);
-  if (with_fail) {  // the same injection as the node's ~test_fail_line
-    std::size_t idx = 0;
-    for (std::size_t i = 0; i < s.lines.size(); ++i)
-      if (s.lines[i].name == g_fail_line) idx = i;
-    run.setFailureInjection([idx](std::size_t line, double t1) { return line == idx && std::abs(t1 - kFailTime) < 1e-9; });
-  }
-  std::vector<Row> out;
-  for (const Sample& x : tr) {
-    const core::VesselLockstep::Result r = run.onSample((x.stamp - tr[0].stamp).toSec(),
-                                                        mooring_dynamics::ros_bridge::toRigidPose(x.pose),
-                                                        with_twist ? &x.twist : nullptr);
-    EXPECT_TRUE(r.publish) << r.message;
-    if (tops) {
-      std::vector<double> t;
-      for (const core::StaticResult& r : run.lines()) t.push_back(r.topTension());
-      tops->push_back(t);
-    }
-    const core::VesselWrench w = run.wrench();
-    Row row;
-    for (const Eigen::Vector3d* v : {&w.force_body, &w.moment_body, &w.force_world, &w.moment_world})
-      for (int i = 0; i < 3; ++i) row.push_back((*v)[i]);
-    out.push_back(row);
-  }
-  return out;
-}
 
 /// printf's %.12g as cable_sim's CSV writes it.
 std::string csv12(double v) {
@@ -202,61 +113,10 @@ std::vector<std::vector<std::string>> cliSeries(const std::vector<Sample>& tr) {
   return rows;
 }
 
-const char* const kLineNames[3] = {"bow", "port_quarter", "stbd_quarter"};  // of small_vessel.yaml
-
-/// The node's outputs by stamp.
-struct Listener {
-  std::map<uint64_t, geometry_msgs::WrenchStamped> body, world;
-  std::map<uint64_t, double> top[3];  ///< each line's top tension (CableState), by stamp
-  std::vector<std::string> events[3];  ///< each line's events (CableState), of its last state
-  std::map<uint64_t, double> length[3];  ///< each line's length (CableState line_length), by stamp
-  ros::Subscriber s1, s2;
-  std::vector<ros::Subscriber> lines;
-  Listener() {
-    ros::NodeHandle nh;
-    for (int i = 0; i < 3; ++i)
-      lines.push_back(nh.subscribe<mooring_dynamics::CableState>(
-          g_node + "/lines/" + kLineNames[i] + "/cable_state", 1000, [this, i](const mooring_dynamics::CableState::ConstPtr& m) {
-            if (!m->tension.empty()) top[i][m->header.stamp.toNSec()] = m->tension.back();
-            events[i] = m->events;
-            length[i][m->header.stamp.toNSec()] = m->line_length;
-          }));
-    s1 = nh.subscribe<geometry_msgs::WrenchStamped>(g_node + "/wrench", 1000, [this](const geometry_msgs::WrenchStamped::ConstPtr& m) {
-      body[m->header.stamp.toNSec()] = *m;
-    });
-    s2 = nh.subscribe<geometry_msgs::WrenchStamped>(g_node + "/wrench_world", 1000,
-                                                    [this](const geometry_msgs::WrenchStamped::ConstPtr& m) {
-                                                      world[m->header.stamp.toNSec()] = *m;
-                                                    });
-  }
-  bool has(const ros::Time& t) const { return body.count(t.toNSec()) && world.count(t.toNSec()); }
-  void spinUntil(const std::function<bool()>& done, double timeout) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && ros::WallTime::now() < end && !done()) {
-      ros::spinOnce();
-      ros::WallDuration(0.005).sleep();
-    }
-  }
-};
-
-Listener* g_listener = nullptr;
-
-bool connect(const ros::Publisher* pub) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    if ((!pub || pub->getNumSubscribers() > 0) && g_listener->s1.getNumPublishers() > 0 &&
-        g_listener->s2.getNumPublishers() > 0)
-      return true;
-    ros::WallDuration(0.05).sleep();
-    ros::spinOnce();
-  }
-  return false;
-}
-
 }  // namespace
 
 TEST(VesselNode, WrenchSeriesMatchesCoreAndCli) {
-  if (g_mode == "storm") GTEST_SKIP() << "not in test_vessel_node.storm.test";
+  if (g_mode == "storm") GTEST_SKIP() << "not in test_vessel_node_storm.test";
   const std::vector<Sample> tr = track();
   Listener& l = *g_listener;
   ros::NodeHandle nh;
@@ -461,7 +321,7 @@ TEST(VesselNode, BadSamplesAreCountedAndTheWrenchStaysFinite) {
 }
 
 TEST(VesselNode, SolveStaticService) {
-  if (g_mode == "storm") GTEST_SKIP() << "the small vessel's statics; not in test_vessel_node.storm.test";
+  if (g_mode == "storm") GTEST_SKIP() << "the small vessel's statics; not in test_vessel_node_storm.test";
   const std::string srv_name = g_node + "/solve_static";
   ASSERT_TRUE(ros::service::waitForService(srv_name, ros::Duration(20.0)));
   VesselStatics srv;
@@ -608,100 +468,4 @@ TEST(VesselNode, ReleaseServiceLetsALineGo) {
   EXPECT_NE(overall["last line event"].find("bow released top"), std::string::npos) << overall["last line event"];
 }
 
-// test_vessel_node.storm.test: the shipped spread mooring (config/spread_mooring.yaml: 8 chain
-// lines, `type: chain`, fallback after one cut) in 40 s of an Hs 6 m storm (generateStormMotion:
-// JONSWAP, Tp 10 s, waves toward 30 deg, 4 m offset down-wave, 3 m drift; the first 20 s ramped
-// in), played from a bag at its own rate under use_sim_time. Every sample is answered, with the
-// wrench of a core VesselLockstep run on the same poses bit for bit, and /diagnostics reports each
-// line's fallback steps as that run counts them (some lines fold in this sea).
-TEST(VesselNode, RidesOutAnHs6StormFromABagWithFallbackCountsInDiagnostics) {
-  if (g_mode != "storm") GTEST_SKIP() << "test_vessel_node.storm.test only";
-  const std::string problem = std::string(MD_SOURCE_DIR) + "/config/spread_mooring.yaml";
-  const std::vector<core::PoseSample> motion = core::generateStormMotion(core::mooringStorm(6.0, 10.0, 30.0, 1, 40.0));
-  std::vector<Sample> tr;
-  for (const core::PoseSample& m : motion) {
-    Sample x;
-    x.stamp = kStart + ros::Duration(m.t);
-    x.pose.position.x = m.pose.position.x();
-    x.pose.position.y = m.pose.position.y();
-    x.pose.position.z = m.pose.position.z();
-    x.pose.orientation.x = m.pose.orientation.x();
-    x.pose.orientation.y = m.pose.orientation.y();
-    x.pose.orientation.z = m.pose.orientation.z();
-    x.pose.orientation.w = m.pose.orientation.w();
-    tr.push_back(x);
-  }
-  // The core's run on the same poses (the node's time: stamp - first stamp; no twist).
-  core::SystemProblem s = core::loadSystemFromFile(problem);
-  core::VesselLockstepOptions lo;
-  lo.threads = 2;
-  core::VesselLockstep run(s, s.dynamics, lo);
-  std::vector<Row> ref;
-  for (const Sample& x : tr) {
-    const core::VesselLockstep::Result r =
-        run.onSample((x.stamp - tr[0].stamp).toSec(), mooring_dynamics::ros_bridge::toRigidPose(x.pose), nullptr);
-    ASSERT_TRUE(r.outcome == core::VesselLockstep::Outcome::Started || r.outcome == core::VesselLockstep::Outcome::Advanced)
-        << "core, t = " << (x.stamp - tr[0].stamp).toSec() << ": " << r.message;
-    const core::VesselWrench w = run.wrench();
-    Row row;
-    for (const Eigen::Vector3d* v : {&w.force_body, &w.moment_body, &w.force_world, &w.moment_world})
-      for (int i = 0; i < 3; ++i) row.push_back((*v)[i]);
-    ref.push_back(row);
-  }
-  std::map<std::string, long> expected;
-  long total = 0;
-  for (std::size_t i = 0; i < s.lines.size(); ++i) {
-    expected[s.lines[i].name] = run.dynamics().lineFallbackSteps(i);
-    total += expected[s.lines[i].name];
-  }
-  ASSERT_GT(total, 0) << "this sea folds some lines";
-
-  Listener& l = *g_listener;
-  ros::NodeHandle nh;
-  std::map<std::string, std::string> line_fallback;
-  ros::Subscriber diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
-      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
-        for (const auto& st : m->status)
-          for (const auto& kv : st.values)
-            if (st.name.find(" line ") != std::string::npos && kv.key == "fallback steps (total)")
-              line_fallback[st.name.substr(st.name.find(" line ") + 6)] = kv.value;
-      });
-  ASSERT_TRUE(connect(nullptr)) << "no connection to " << g_node;
-  const std::string bag_file = (fs::temp_directory_path() / ("md_storm_" + std::to_string(::getpid()) + ".bag")).string();
-  {
-    rosbag::Bag bag(bag_file, rosbag::bagmode::Write);
-    for (const Sample& x : tr) bag.write(g_node + "/vessel_pose", x.stamp, toMsg(x));
-  }
-  const std::string cmd = "rosbag play --clock -q --wait-for-subscribers " + bag_file + " >/dev/null 2>&1";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  std::remove(bag_file.c_str());
-  l.spinUntil([&] { return l.has(tr.back().stamp); }, 120.0);
-  for (std::size_t k = 0; k < tr.size(); ++k) {
-    ASSERT_TRUE(l.has(tr[k].stamp)) << "no wrench for sample " << k;
-    const Row node = rowOf(l.body[tr[k].stamp.toNSec()], l.world[tr[k].stamp.toNSec()]);
-    for (std::size_t c = 0; c < 12; ++c) EXPECT_EQ(node[c], ref[k][c]) << "sample " << k << " column " << c;
-  }
-  // /diagnostics after the last sample: each line's total as the core counted it.
-  l.spinUntil([&] {
-    if (line_fallback.size() < expected.size()) return false;
-    for (const auto& [name, n] : expected)
-      if (line_fallback[name] != std::to_string(n)) return false;
-    return true;
-  }, 10.0);
-  for (const auto& [name, n] : expected) EXPECT_EQ(line_fallback[name], std::to_string(n)) << name;
-  std::printf("Hs 6 storm from a bag: %zu samples answered, %ld fallback steps in all\n", tr.size(), total);
-}
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_vessel_node");
-  ros::NodeHandle pnh("~");
-  pnh.param<std::string>("mode", g_mode, g_mode);
-  pnh.param<std::string>("node", g_node, g_node);
-  pnh.param<std::string>("source", g_source, g_source);
-  pnh.param("twist", g_twist, g_twist);
-  pnh.param<std::string>("fail_line", g_fail_line, g_fail_line);
-  Listener l;
-  g_listener = &l;
-  return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return testMain(argc, argv, "test_vessel_node"); }
