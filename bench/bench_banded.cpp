@@ -12,7 +12,7 @@
 // before each factorization; the copy leaves them in cache as the assembly does) and only the
 // factorization is timed (manual time).
 // BM_BlockSolve<block>/<nodes>: one solve() of a fixed factorization per iteration (the copy of
-// the right-hand side is not timed): from the second solve of a factorization on, the solve
+// the right-hand side is not timed): from the third solve of a factorization on, the solve
 // multiplies by the nodes' inverse diagonal blocks (block_lu_inverse.hpp), as modified Newton's
 // repeated solves do.
 // BM_BlockSolveFirst<block>/<nodes>: the first solve() after each factorization (substitution,

@@ -1,5 +1,5 @@
-// The block LU's solve with inverted diagonal blocks (BandedMatrix::solve on a factor solved more
-// than once, as modified Newton does): per node the inverse of the unit lower block L11 and of
+// The block LU's solve with inverted diagonal blocks (BandedMatrix::solve on a factor solved three
+// times or more, as modified Newton does): per node the inverse of the unit lower block L11 and of
 // the upper block U11 are formed once after the factorization, so that each solve multiplies by
 // them instead of substituting. Substitution is a chain of dependent multiply-and-subtracts, one
 // unknown after the other (16 of them per node in 3-D); a product by a stored inverse is
