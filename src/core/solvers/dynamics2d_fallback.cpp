@@ -54,6 +54,7 @@ struct Model2 {
   Vec3 endBodyLoad(const Body&, const Vec3&, const Vec3&) const { return Vec3::Zero(); }  // (no free end in 2-D)
   bool topHeld() const { return true; }
   bool lowHeld() const { return true; }
+  Vec3 topForce(double) const { return Vec3::Zero(); }  // (the top is held)
   void top(double t, Vec3& x, Vec3& v) const {
     const TopInput in = im.top(t);
     // Held by feedback: a top interval without compression (slack, folded where the top is off)

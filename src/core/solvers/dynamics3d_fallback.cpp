@@ -11,10 +11,13 @@
 // step starts from there; while the line stays folded it fails and falls back again.
 //
 // Not taken by the fallback (the step then fails as before, with the reason added to the
-// message): a force, subsurface-body or drifting-buoy top, a step in which the winch runs
-// (fallbackUnavailable()). A body at a free lower end is a lumped mass (its mass plus added
-// mass) at node 0 with its weight and drag. The top follows its prescribed path, the anchor
-// stays (or follows its motion); a released end is a free node.
+// message): a drifting-buoy top, a top whose force is given (a force top, a force table on a
+// driven top: massless in the box rows, see docs/method.md), a step in which the winch runs
+// (fallbackUnavailable()). A body at a free lower end, or a subsurface body at the top, is a
+// lumped mass (its mass plus added mass) at the end node with its weight and drag, as the box
+// rows' end balance has them; a force table's force on the subsurface body pulls that node. A
+// top on a path follows it, the anchor stays (or follows its motion); a released end is a free
+// node.
 #include "dynamics3d_impl.hpp"
 #include "lumped_line.hpp"
 
@@ -37,18 +40,26 @@ using Vec3 = Eigen::Vector3d;
 using lumped::Line;
 using lumped::NodeWater;
 
-/// What the fallback does with the line's ends: held on their paths, or free (released).
+/// What the fallback does with the line's ends over a step that ends at t_new: held on their
+/// paths, or free nodes (released; a subsurface body, pulled by a force table's force if any).
 struct Ends {
   std::string top, low;  ///< the end conditions' names
   bool top_held, top_free, low_held, low_free;
+  bool top_unloaded;  ///< a released top: free and pulled by nothing
+  bool top_pulled;    ///< a free top pulled by the top input's force (TopState::force)
 };
-Ends endsOf(const DynamicSolver3D::Impl& im) {
+Ends endsOf(const DynamicSolver3D::Impl& im, double t_new) {
   Ends e;
   e.top = im.upper->name();
   e.low = im.lower->name();
   // A surface buoy's top moves as prescribed in dynamics (its balance is the statics' alone).
-  e.top_held = e.top == "position top" || e.top == "tow point" || e.top == "surface buoy";
-  e.top_free = e.top == "released top";
+  // A driven top whose force is given (DrivenTop3D's prescribed force) is neither: refused.
+  const bool driven = e.top == "position top" || e.top == "force top" || e.top == "surface buoy";
+  const bool force = im.top(t_new).force;
+  e.top_held = (driven && !force) || e.top == "tow point";
+  e.top_unloaded = e.top == "released top";
+  e.top_pulled = force && e.top == "subsurface body";
+  e.top_free = e.top_unloaded || e.top == "subsurface body";
   e.low_held = e.low == "anchor" || e.low == "moving anchor";
   e.low_free = e.low == "released lower end" || e.low == "free end" || e.low == "free end with body";
   return e;
@@ -61,13 +72,19 @@ const Body* endBody(const DynamicSolver3D::Impl& im) {
   return &im.problem.bodies[im.problem.end_body];
 }
 
+/// The subsurface body at the top, or nullptr.
+const Body* topBody(const DynamicSolver3D::Impl& im) {
+  if (std::strcmp(im.upper->name(), "subsurface body") != 0) return nullptr;
+  return &im.problem.bodies[im.problem.top.body];
+}
+
 }  // namespace
 
 std::string fallbackUnavailable(const DynamicSolver3D::Impl& im, double t_new) {
-  const Ends e = endsOf(im);
+  const Ends e = endsOf(im, t_new);
+  if (im.top(t_new).force && !e.top_free) return "no fallback step while the top's force is given";
   if (!(e.top_held || e.top_free)) return "no fallback step for a line whose top is a " + e.top;
   if (!(e.low_held || e.low_free)) return "no fallback step for a line whose lower end is a " + e.low;
-  if (e.top_held && im.top(t_new).force) return "no fallback step while the top's force is given";
   // The winch's rate is set only inside an implicit step: ask its program whether the length
   // moves over this one (a step past a limit is refused by the implicit step, and stays refused).
   const WinchState& w = im.winch;
@@ -124,6 +141,8 @@ struct Model3 {
   double kappa;      ///< feedbackGain [1/s]
   double t0;         ///< the step's start [s]
   bool compression;  ///< the top interval's material carries compression
+  double dt;         ///< the step [s]
+  bool top_pulled;   ///< a free top pulled by the top input's force
   double seabed(const Material& m, const Vec3& x, const Vec3& v) const {
     double y[N] = {0.0};
     y[X] = x.x();
@@ -142,6 +161,13 @@ struct Model3 {
   }
   bool topHeld() const { return top_held; }
   bool lowHeld() const { return low_held; }
+  /// The force on a free top at fraction w of the step [N] (problem frame): the top input's, as
+  /// the box rows take it (DrivenTop3D's prescribed force, the subsurface body's extra force).
+  Vec3 topForce(double w) const {
+    if (!top_pulled) return Vec3::Zero();
+    const TopState s = im.top(t0 + w * dt);
+    return s.force ? Vec3(s.fx, s.fy, s.fz) : Vec3::Zero();
+  }
   void top(double t, Vec3& x, Vec3& v) const {
     const TopState s = im.top(t);
     // Held by feedback: a top interval without compression (slack, folded where the top is off)
@@ -170,6 +196,7 @@ lumped::Setup setupOf(const DynamicSolver3D::Impl& im) {
   s.mesh = &im.mesh;
   s.parted = im.parted;
   s.end_body = endBody(im);
+  s.top_body = topBody(im);
   return s;
 }
 
@@ -234,13 +261,13 @@ void toBoxState(const DynamicSolver3D::Impl& im, const Line& L, const Eigen::Vec
   }
   // A free end without a body carries no tension: its strain is the material's at zero tension
   // (with a body it carries the body's weight and drag: the chord's strain stays).
-  const Ends ends = endsOf(im);
+  const Ends ends = endsOf(im, im.t);
   const bool low_unloaded = ends.low_free && !endBody(im);
   for (int j = 0; j < n; ++j) {
     double* y = Yout.data() + N * j;
     const double* y0 = Y0.data() + N * j;
     if (eps_cnt[j] > 0.0) y[EPS] = eps_sum[j] / eps_cnt[j];
-    if ((j == n - 1 && ends.top_free) || (j == 0 && low_unloaded)) y[EPS] = im.mat(j).strainAt(0.0);
+    if ((j == n - 1 && ends.top_unloaded) || (j == 0 && low_unloaded)) y[EPS] = im.mat(j).strainAt(0.0);
     // Frame: the last frame turned by the smallest rotation from its tangent to the new one.
     double R0[9];
     quat::matrix(y0 + Q0, R0);
@@ -335,7 +362,7 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
     }
   }
   // Which ends are held: the top on its path, the anchor where it is (or on its path).
-  const Ends ends = endsOf(im);
+  const Ends ends = endsOf(im, t1);
   Vec3 top_offset = Vec3::Zero();
   if (ends.top_held) {
     const TopState s = im.top(t0);
@@ -343,7 +370,8 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   }
   // A winch's top holds its position by feedback once a program was set (as its rows do).
   const double kappa = im.winch.used ? 1.0 / (kPositionFeedbackSteps * im.problem.dynamics.dt) : feedbackGain(im.problem);
-  const Model3 model{im, ends.top_held, ends.low_held, L.x[0], top_offset, kappa, t0, im.mat(n - 1).compression};
+  const Model3 model{im,    ends.top_held, ends.low_held, L.x[0], top_offset, kappa, t0, im.mat(n - 1).compression,
+                     dt, ends.top_pulled};
   long substeps = 0;
   if (!lumped::advance(setupOf(im), model, water, t0, dt, L, substeps, rep.message)) return false;
   Eigen::VectorXd Ynew;

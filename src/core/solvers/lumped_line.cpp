@@ -33,6 +33,7 @@ void lumpMasses(const Setup& s, Line& L) {
     }
   }
   if (const Body* b = s.end_body) L.body_mass[0] += b->mass + b->added_mass;
+  if (const Body* b = s.top_body) L.body_mass[static_cast<std::size_t>(n) - 1] += b->mass + b->added_mass;
 }
 
 void setReferenceLengths(const Setup& s, const std::vector<Vec3>& tangent, Line& L) {

@@ -33,6 +33,7 @@
 //   double seabed(const Material& m, const Vec3& x, const Vec3& v) const;  // reaction [N/m], +z
 //   Vec3 endBodyLoad(const Body& b, const Vec3& tangent, const Vec3& r) const;  // r: water - node
 //   bool topHeld() const;  void top(double t, Vec3& x, Vec3& v) const;     // the top's path
+//   Vec3 topForce(double w) const;  // the force on a free top at fraction w of the step
 //   bool lowHeld() const;  void low(double t, Vec3& x, Vec3& v) const;     // the lower end's
 #pragma once
 
@@ -131,12 +132,14 @@ struct NodeWater {
 };
 
 /// What the lumped model needs of the solver's line besides the Model: its problem, mesh (h = 0
-/// intervals are junctions), the parted interval (-1: none) and the body at a free lower end.
+/// intervals are junctions), the parted interval (-1: none), the body at a free lower end and the
+/// subsurface body at a free top.
 struct Setup {
   const Problem* problem = nullptr;
   const Mesh* mesh = nullptr;
   int parted = -1;
   const Body* end_body = nullptr;
+  const Body* top_body = nullptr;
 };
 
 /// Masses of the nodes of `L` (L.x, L.v are the caller's: set them after this).
@@ -224,16 +227,20 @@ void forces(const Setup& s, const Model& model, const std::vector<NodeWater>& wa
     L.drag_rate[j] += 0.25 * rate;
     L.drag_rate[j + 1] += 0.25 * rate;
   }
-  // The body at a free lower end: its weight and drag (as the box rows' end balance) on the
-  // velocity relative to the water at node 0, taken semi-implicitly as the line's.
-  if (const Body* b = s.end_body) {
-    const Vec3 wv = (1.0 - w) * water[0].w0 + w * water[0].w1;
-    const Vec3 r = wv - L.v[0];
-    L.f[0] += model.endBodyLoad(*b, L.tangent[0], r);
+  // The body at a free lower end, and the subsurface body at a free top: its weight and drag
+  // (as the box rows' end balance) on the velocity relative to the water at the end node, taken
+  // semi-implicitly as the line's.
+  for (const auto& [b, j] : {std::make_pair(s.end_body, 0), std::make_pair(s.top_body, n - 1)}) {
+    if (!b) continue;
+    const Vec3 wv = (1.0 - w) * water[j].w0 + w * water[j].w1;
+    const Vec3 r = wv - L.v[j];
+    L.f[j] += model.endBodyLoad(*b, L.tangent[j], r);
     const double q = 0.5 * rho * 0.25 * eq2d::kPi * sqr(b->diameter);
     const double cd = b->drag == Body::Drag::Sphere ? b->cd : std::max(b->cdn, b->cdt);
-    L.drag_rate[0] += q * cd * 2.0 * r.norm();
+    L.drag_rate[j] += q * cd * 2.0 * r.norm();
   }
+  // A free top's given force (a force top, a force table's force on a subsurface body).
+  L.f[n - 1] += model.topForce(w);
   // The seabed (eq. 35-36 with the box rows' contact onset) on each node's tributary length.
   for (int j = 0; j < n; ++j) {
     double hj = 0.0;
