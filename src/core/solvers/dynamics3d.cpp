@@ -159,9 +159,19 @@ class DynamicStepSystem3D : public NewtonSystem {
     endRows<S16>(*im_.part_lower, j + 1, row + im_.part_top->dynamicRows(), Yv, R, J);
   }
 
-  /// The rows of intervals [j0, j1) (but a parted one's: partedRows).
+  /// The rows of intervals [j0, j1) (but a parted one's: partedRows): the residual alone
+  /// (double) by residualRows, with the Jacobian by intervalRowsAs.
   template <class S32>
   void intervalRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1) const {
+    if constexpr (std::is_same_v<S32, double>)
+      residualRows(Yv, R, j0, j1);
+    else
+      intervalRowsAs<S32>(Yv, R, J, j0, j1);
+  }
+
+  /// The rows of intervals [j0, j1) (but a parted one's), each on its own.
+  template <class S32>
+  void intervalRowsAs(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1) const {
     const auto [am, ak, c1, c0] = weights();
     const Environment& env = im_.problem.environment;
     const Eigen::VectorXd &Yp = im_.Y, &Ydp = im_.Yd;
@@ -200,6 +210,65 @@ class DynamicStepSystem3D : public NewtonSystem {
       for (int q = 0; q < weighted; ++q)
         r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S[kInertiaRows * j + q]);
       scatter(r, N, row, N * j, 2 * N, R, J);
+    }
+  }
+
+  /// What an interval's residual rows take from one of its nodes (intervalRows in double):
+  /// the spatial terms, the weighted rate, the inertia rows at the new and the last level.
+  struct NodeRows {
+    NodeTerms<double> terms;
+    double ydw[N], in1[kInertiaRows], in0[kInertiaRows];
+  };
+
+  /// Node k's rows for an interval of material m: the quantities intervalSpatial and
+  /// intervalInertia compute there, in the same operations.
+  void nodeRows(const Eigen::VectorXd& Yv, int k, const Material& m, NodeRows& out) const {
+    const auto [am, ak, c1, c0] = weights();
+    (void)ak;
+    const Environment& env = im_.problem.environment;
+    const double* y = Yv.data() + N * k;
+    const double* yp = im_.Y.data() + N * k;
+    const double* ydp = im_.Yd.data() + N * k;
+    for (int q = 0; q < N; ++q) {
+      const double yd = c1 * (y[q] - yp[q]) - c0 * ydp[q];
+      out.ydw[q] = (1.0 - am) * yd + am * ydp[q];  // weighted rate of eq. 30
+    }
+    const std::size_t kk = static_cast<std::size_t>(k);
+    nodeTerms(env, m, y, water_[kk], out.terms);
+    inertia(env, m, y, out.ydw, out.terms.R, water_[kk], out.in1);
+    double Rp[9];
+    quat::matrix(yp + Q0, Rp);
+    inertia(env, m, yp, out.ydw, Rp, im_.water[kk], out.in0);
+  }
+
+  /// intervalRows in double (the residual alone, for Newton iterations that keep a Jacobian):
+  /// a node's terms once for the two intervals it ends where they share a material, the same
+  /// values as the generic rows bit for bit; junctions and a parted interval as there.
+  void residualRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, int j0, int j1) const {
+    const double ak = weights().ak;
+    NodeRows rows[2];
+    NodeRows *a = &rows[0], *b = &rows[1];
+    const Material* kept = nullptr;  // the material *a holds node j's rows for (null: none)
+    for (int j = j0; j < j1; ++j) {
+      const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
+      if (j == im_.parted || !(iv.h > 0.0)) {
+        intervalRowsAs<double>(Yv, R, nullptr, j, j + 1);
+        kept = nullptr;
+        continue;
+      }
+      const Material& m = im_.problem.materials[iv.material];
+      if (kept != &m) nodeRows(Yv, j, m, *a);
+      nodeRows(Yv, j + 1, m, *b);
+      double r[N], in1[kInertiaRows], in0[kInertiaRows];
+      intervalSpatialOf(m, iv.h, Yv.data() + N * j, Yv.data() + N * (j + 1), a->terms, b->terms, r);
+      intervalInertiaOf(iv.h, a->in1, b->in1, in1);
+      intervalInertiaOf(iv.h, a->in0, b->in0, in0);
+      for (int q = 0; q < kInertiaRows; ++q)
+        r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S[kInertiaRows * j + q]);
+      const int row = end_rows_ + N * j;
+      for (int q = 0; q < N; ++q) R[row + q] = r[q];
+      std::swap(a, b);
+      kept = &m;
     }
   }
 

@@ -233,20 +233,33 @@ void inertia(const Environment& env, const Material& m, const S* Yn, const S* Yd
   out[5] = p * om[1];
 }
 
-/// Spatial part K dY/ds + F of one interval of length h > 0, times h (eq. 11): sixteen rows.
-/// Products are taken of interval means, as the 2-D rows take (Sn_a + Sn_b)/2 (phi_b - phi_a).
+/// What the rows of an interval of material `mat` take from one of its nodes: the frame R(q),
+/// the tension T(eps), the stretch p = 1 + eps and the distributed load g (with the seabed's).
+/// A node shared by two intervals of one material has the same terms in both (the 3-D solver
+/// computes them once there, DynamicStepSystem3D::intervalRows).
 template <class S>
-void intervalSpatial(const Environment& env, const Material& mat, double h, const S* Ya, const S* Yb,
-                     const Water& wa, const Water& wb, S* R) {
-  S Ra[9], Rb[9];
-  quat::matrix(Ya + Q0, Ra);
-  quat::matrix(Yb + Q0, Rb);
-  const S Ta = eq2d::tension(mat, Ya[EPS]), Tb = eq2d::tension(mat, Yb[EPS]);
-  const S pa = 1.0 + Ya[EPS], pb = 1.0 + Yb[EPS];
-  S ga[3], gb[3];
-  distributedLoad(env, mat, Ya, Ra, wa, seabedReaction(env, mat, Ya, Ra), ga);
-  distributedLoad(env, mat, Yb, Rb, wb, seabedReaction(env, mat, Yb, Rb), gb);
-  const S fa[3] = {Ta, Ya[S2], Ya[S3]}, fb[3] = {Tb, Yb[S2], Yb[S3]};
+struct NodeTerms {
+  S R[9], T, p, g[3];
+};
+template <class S>
+void nodeTerms(const Environment& env, const Material& mat, const S* Yn, const Water& w, NodeTerms<S>& n) {
+  quat::matrix(Yn + Q0, n.R);
+  n.T = eq2d::tension(mat, Yn[EPS]);
+  n.p = 1.0 + Yn[EPS];
+  distributedLoad(env, mat, Yn, n.R, w, seabedReaction(env, mat, Yn, n.R), n.g);
+}
+
+/// intervalSpatial from the two nodes' terms (nodeTerms with the interval's material).
+template <class S>
+void intervalSpatialOf(const Material& mat, double h, const S* Ya, const S* Yb, const NodeTerms<S>& na,
+                       const NodeTerms<S>& nb, S* R) {
+  const S& pa = na.p;
+  const S& pb = nb.p;
+  const S* const Ra = na.R;
+  const S* const Rb = nb.R;
+  const S* const ga = na.g;
+  const S* const gb = nb.g;
+  const S fa[3] = {na.T, Ya[S2], Ya[S3]}, fb[3] = {nb.T, Yb[S2], Yb[S3]};
   S Om[3], f[3], v[3];
   for (int i = 0; i < 3; ++i) {
     Om[i] = 0.5 * (Ya[O1 + i] + Yb[O1 + i]);
@@ -280,6 +293,24 @@ void intervalSpatial(const Environment& env, const Material& mat, double h, cons
   R[15] = Yb[Z] - Ya[Z] - 0.5 * h * (pa * Ra[6] + pb * Rb[6]);
 }
 
+/// Spatial part K dY/ds + F of one interval of length h > 0, times h (eq. 11): sixteen rows.
+/// Products are taken of interval means, as the 2-D rows take (Sn_a + Sn_b)/2 (phi_b - phi_a).
+template <class S>
+void intervalSpatial(const Environment& env, const Material& mat, double h, const S* Ya, const S* Yb,
+                     const Water& wa, const Water& wb, S* R) {
+  NodeTerms<S> na, nb;
+  nodeTerms(env, mat, Ya, wa, na);
+  nodeTerms(env, mat, Yb, wb, nb);
+  intervalSpatialOf(mat, h, Ya, Yb, na, nb, R);
+}
+
+/// Inertia part of one interval (times h) from its nodes' inertia rows ia, ib (inertia()):
+/// h/2 (M_a Yd_a + M_b Yd_b) in rows 0-5.
+template <class S>
+void intervalInertiaOf(double h, const S* ia, const S* ib, S* R) {
+  for (int r = 0; r < kInertiaRows; ++r) R[r] = 0.5 * h * (ia[r] + ib[r]);
+}
+
 /// Inertia part of one interval (times h): h/2 (M_a Yd_a + M_b Yd_b) in rows 0-5.
 template <class S>
 void intervalInertia(const Environment& env, const Material& mat, double h, const S* Ya, const S* Yb,
@@ -289,7 +320,7 @@ void intervalInertia(const Environment& env, const Material& mat, double h, cons
   quat::matrix(Yb + Q0, Rb);
   inertia(env, mat, Ya, Yda, Ra, wa, ia);
   inertia(env, mat, Yb, Ydb, Rb, wb, ib);
-  for (int r = 0; r < kInertiaRows; ++r) R[r] = 0.5 * h * (ia[r] + ib[r]);
+  intervalInertiaOf(h, ia, ib, R);
 }
 
 /// Adds a point body's load [N] to P (problem frame): wet weight, and drag on the water velocity
