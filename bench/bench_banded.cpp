@@ -67,54 +67,52 @@ void blockFactor(benchmark::State& state, int block, int lead) {
   }
 }
 
+/// A random right-hand side for A.
+Eigen::VectorXd randomRhs(const BandedMatrix& A) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd b(A.size());
+  for (int i = 0; i < A.size(); ++i) b[i] = u(rng);
+  return b;
+}
+
+/// One timed solve() of b (the copy into x is not timed).
+void timedSolve(benchmark::State& state, const BandedMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  x = b;
+  const auto t0 = std::chrono::steady_clock::now();
+  A.solve(x);
+  state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  benchmark::DoNotOptimize(x.data());
+  benchmark::ClobberMemory();
+}
+
 void blockSolve(benchmark::State& state, int block, int lead) {
-  const int nodes = static_cast<int>(state.range(0));
-  BandedMatrix A = randomBlockMatrix(block, lead, nodes, 2);
+  BandedMatrix A = randomBlockMatrix(block, lead, static_cast<int>(state.range(0)), 2);
   if (A.factorize() != 0) {
     state.SkipWithError("singular matrix");
     return;
   }
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd b(A.size()), x(A.size());
-  for (int i = 0; i < A.size(); ++i) b[i] = u(rng);
-  for (auto _ : state) {
-    x = b;
-    const auto t0 = std::chrono::steady_clock::now();
-    A.solve(x);
-    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    benchmark::DoNotOptimize(x.data());
-    benchmark::ClobberMemory();
-  }
+  const Eigen::VectorXd b = randomRhs(A);
+  Eigen::VectorXd x;
+  for (auto _ : state) timedSolve(state, A, b, x);
 }
 
 /// The solve() number `which` after each factorization (1: substitution; 3: the one that forms the
 /// inverse blocks and uses them); the refactorization and the solves before are not timed.
 void blockSolveNth(benchmark::State& state, int block, int lead, int which) {
-  const int nodes = static_cast<int>(state.range(0));
-  BandedMatrix A = randomBlockMatrix(block, lead, nodes, 2);
+  BandedMatrix A = randomBlockMatrix(block, lead, static_cast<int>(state.range(0)), 2);
   const std::size_t entries = static_cast<std::size_t>(A.size()) * static_cast<std::size_t>(2 * block);
   const std::vector<double> assembled(A.blockRow(0), A.blockRow(0) + entries);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd b(A.size()), x(A.size());
-  for (int i = 0; i < A.size(); ++i) b[i] = u(rng);
+  const Eigen::VectorXd b = randomRhs(A);
+  Eigen::VectorXd x;
   for (auto _ : state) {
     std::memcpy(A.blockRow(0), assembled.data(), entries * sizeof(double));
     if (A.factorize() != 0) {
       state.SkipWithError("singular matrix");
       return;
     }
-    for (int k = 1; k < which; ++k) {
-      x = b;
-      A.solve(x);
-    }
-    x = b;
-    const auto t0 = std::chrono::steady_clock::now();
-    A.solve(x);
-    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    benchmark::DoNotOptimize(x.data());
-    benchmark::ClobberMemory();
+    for (int k = 1; k < which; ++k) A.solve(x = b);
+    timedSolve(state, A, b, x);
   }
 }
 

@@ -123,6 +123,28 @@ namespace core {
 namespace block_lu {
 
 
+/// The forward part's sweep over the panels (blockForward; block_lu_inverse.hpp's
+/// inverseForward): with Panels::kAll or kInner the inner panels from the anchor rows' b[0 ..
+/// LEAD), kInner leaving the values carried into the last node in carried[0 .. LEAD); with
+/// kLast the last panel only, from carried. forward(rows, j) eliminates panel j (its rows: an
+/// std::integral_constant, M for an inner panel, NB for the last) and carries `in` on.
+template <int NB, int LEAD, class Layout, class Forward>
+MD_INLINE void forwardPanels(int nodes, double* in, const double* b, Panels part, double* carried,
+                             const Forward& forward) {
+  constexpr int M = LEAD + NB;
+  if (part != Panels::kLast) {
+    for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = b[r];
+    for (int j = 0; j + 1 < nodes; ++j) forward(std::integral_constant<int, M>{}, j);
+    if (part == Panels::kInner) {
+      for (int r = 0; r < LEAD; ++r) carried[r] = in[Layout::carriedSlot(r)];
+      return;
+    }
+  } else {
+    for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = carried[r];
+  }
+  forward(std::integral_constant<int, NB>{}, nodes - 1);
+}
+
 /// Solve with a block factor of either kernel, in two parts: forward through the panels (the
 /// interchanges, the unit lower factor, the leftover rows carried on), then back substitution
 /// node by node from the top. Layout gives panel j's row at position i (entry of column c at
@@ -162,17 +184,7 @@ MD_INLINE void blockForward(int n, const Layout& layout, const int* perm, double
 #pragma GCC unroll 16
       for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = v[NB + r];
   };
-  if (part != Panels::kLast) {
-    for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = b[r];
-    for (int j = 0; j + 1 < nodes; ++j) forward(std::integral_constant<int, M>{}, j);
-    if (part == Panels::kInner) {
-      for (int r = 0; r < LEAD; ++r) carried[r] = in[Layout::carriedSlot(r)];
-      return;
-    }
-  } else {
-    for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = carried[r];
-  }
-  forward(std::integral_constant<int, NB>{}, nodes - 1);
+  forwardPanels<NB, LEAD, Layout>(nodes, in, b, part, carried, forward);
 }
 
 /// Back substitution over nodes from, from - 1, .., to (after the forward part): b[NB j ..)

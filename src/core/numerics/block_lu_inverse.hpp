@@ -189,17 +189,7 @@ MD_INVERSE_CLONES void inverseForward(int n, const double* form, const int* perm
       for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = w[r];
     }
   };
-  if (part != Panels::kLast) {
-    for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = b[r];
-    for (int j = 0; j + 1 < nodes; ++j) forward(std::integral_constant<int, M>{}, j);
-    if (part == Panels::kInner) {
-      for (int r = 0; r < LEAD; ++r) carried[r] = in[Layout::carriedSlot(r)];
-      return;
-    }
-  } else {
-    for (int r = 0; r < LEAD; ++r) in[Layout::carriedSlot(r)] = carried[r];
-  }
-  forward(std::integral_constant<int, NB>{}, nodes - 1);
+  forwardPanels<NB, LEAD, Layout>(nodes, in, b, part, carried, forward);
 }
 
 /// blockBackward (block_lu.hpp) with the solve forms: x_j = U11^{-1} (b_j - U12 x_{j+1}).
