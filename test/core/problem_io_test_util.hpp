@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <exception>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -81,6 +83,25 @@ top:
 )";
 
 inline std::string minimalWith(const std::string& extra) { return std::string(kMinimal) + extra; }
+
+/// The first ```yaml block after `heading` in docs/problem_format.md (the test fails and "" is
+/// returned when the file, the heading or the block is missing).
+inline std::string documentedYaml(const std::string& heading) {
+  std::ifstream f(std::string(MD_SOURCE_DIR) + "/docs/problem_format.md");
+  if (!f.good()) {
+    ADD_FAILURE() << "docs/problem_format.md not readable";
+    return "";
+  }
+  const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const auto sec = doc.find(heading);
+  const auto b = sec == std::string::npos ? sec : doc.find("```yaml\n", sec);
+  const auto e = b == std::string::npos ? b : doc.find("```", b + 8);
+  if (e == std::string::npos) {
+    ADD_FAILURE() << "no yaml block after \"" << heading << "\" in docs/problem_format.md";
+    return "";
+  }
+  return doc.substr(b + 8, e - b - 8);
+}
 
 }  // namespace testing_util
 }  // namespace core

@@ -242,17 +242,10 @@ TEST(ProblemIo, DynamicsShipTrack) {
 }
 
 TEST(ProblemIo, DocumentedShipTrackExampleLoads) {
-  std::ifstream f(std::string(MD_SOURCE_DIR) + "/docs/problem_format.md");
-  ASSERT_TRUE(f.good());
-  const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  const auto sec = doc.find("#### Ship tracks");
-  ASSERT_NE(sec, std::string::npos);
-  const auto b = doc.find("```yaml\n", sec);
-  ASSERT_NE(b, std::string::npos);
-  const auto e = doc.find("```", b + 8);
-  ASSERT_NE(e, std::string::npos);
+  const std::string yaml = documentedYaml("#### Ship tracks");
+  ASSERT_FALSE(yaml.empty());
   Problem p;
-  ASSERT_NO_THROW(p = loadProblemFromString(minimalWith(doc.substr(b + 8, e - b - 8))));
+  ASSERT_NO_THROW(p = loadProblemFromString(minimalWith(yaml)));
   const ShipTrack& st = p.dynamics.top_motion.ship_track;
   ASSERT_EQ(st.legs.size(), 4u);
   // 200 s + the 375 deg turn (440 s, as the paper says) + 300 s = the example's duration.

@@ -171,17 +171,10 @@ TEST(ProblemIo, PaperConfigsMatchAppendix) {
 }
 
 TEST(ProblemIo, DocumentationExampleLoads) {
-  std::ifstream f(std::string(MD_SOURCE_DIR) + "/docs/problem_format.md");
-  ASSERT_TRUE(f.good());
-  const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  const auto sec = doc.find("## Complete example");
-  ASSERT_NE(sec, std::string::npos);
-  const auto b = doc.find("```yaml\n", sec);
-  ASSERT_NE(b, std::string::npos);
-  const auto e = doc.find("```", b + 8);
-  ASSERT_NE(e, std::string::npos);
+  const std::string yaml = documentedYaml("## Complete example");
+  ASSERT_FALSE(yaml.empty());
   Problem p;
-  EXPECT_NO_THROW(p = loadProblemFromString(doc.substr(b + 8, e - b - 8)));
+  EXPECT_NO_THROW(p = loadProblemFromString(yaml));
   EXPECT_EQ(p.segments.size(), 3u);
   EXPECT_EQ(p.top.type, TopBoundary::Type::Buoy);
 }
