@@ -47,6 +47,7 @@ struct Ends {
   bool top_held, top_free, low_held, low_free;
   bool top_unloaded;  ///< a released top: free and pulled by nothing
   bool top_pulled;    ///< a free top pulled by the top input's force (TopState::force)
+  bool top_force;     ///< the top input gives a force at t_new
 };
 Ends endsOf(const DynamicSolver3D::Impl& im, double t_new) {
   Ends e;
@@ -55,10 +56,10 @@ Ends endsOf(const DynamicSolver3D::Impl& im, double t_new) {
   // A surface buoy's top moves as prescribed in dynamics (its balance is the statics' alone).
   // A driven top whose force is given (DrivenTop3D's prescribed force) is neither: refused.
   const bool driven = e.top == "position top" || e.top == "force top" || e.top == "surface buoy";
-  const bool force = im.top(t_new).force;
-  e.top_held = (driven && !force) || e.top == "tow point";
+  e.top_force = im.top(t_new).force;
+  e.top_held = (driven && !e.top_force) || e.top == "tow point";
   e.top_unloaded = e.top == "released top";
-  e.top_pulled = force && e.top == "subsurface body";
+  e.top_pulled = e.top_force && e.top == "subsurface body";
   e.top_free = e.top_unloaded || e.top == "subsurface body";
   e.low_held = e.low == "anchor" || e.low == "moving anchor";
   e.low_free = e.low == "released lower end" || e.low == "free end" || e.low == "free end with body";
@@ -82,7 +83,7 @@ const Body* topBody(const DynamicSolver3D::Impl& im) {
 
 std::string fallbackUnavailable(const DynamicSolver3D::Impl& im, double t_new) {
   const Ends e = endsOf(im, t_new);
-  if (im.top(t_new).force && !e.top_free) return "no fallback step while the top's force is given";
+  if (e.top_force && !e.top_free) return "no fallback step while the top's force is given";
   if (!(e.top_held || e.top_free)) return "no fallback step for a line whose top is a " + e.top;
   if (!(e.low_held || e.low_free)) return "no fallback step for a line whose lower end is a " + e.low;
   // The winch's rate is set only inside an implicit step: ask its program whether the length
