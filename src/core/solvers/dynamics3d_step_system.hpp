@@ -161,17 +161,18 @@ class DynamicStepSystem3D : public NewtonSystem {
     endRows<S16>(*im_.part_lower, j + 1, row + im_.part_top->dynamicRows(), Yv, R, J);
   }
 
-  /// The rows of intervals [j0, j1) (but a parted one's: partedRows): the residual alone
-  /// (double) by residualRows, with the Jacobian by intervalRowsAs.
+  /// The rows of intervals [j0, j1) (but a parted one's: partedRows): the residual alone in
+  /// double, or with the Jacobian (node terms in S16, the interval's rows in S32), by sharedRows.
   template <class S32>
   void intervalRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1) const {
     if constexpr (std::is_same_v<S32, double>)
-      residualRows(Yv, R, j0, j1);
+      sharedRows<double, double>(Yv, R, nullptr, j0, j1);
     else
-      intervalRowsAs<S32>(Yv, R, J, j0, j1);
+      sharedRows<AD16, S32>(Yv, R, J, j0, j1);
   }
 
-  /// The rows of intervals [j0, j1) (but a parted one's), each on its own.
+  /// The rows of intervals [j0, j1) (but a parted one's), each on its own: every node term
+  /// evaluated in S32 (junctions, a parted line; sharedRows for the rest).
   template <class S32>
   void intervalRowsAs(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1) const {
     const auto [am, ak, c1, c0] = weights();
@@ -215,60 +216,99 @@ class DynamicStepSystem3D : public NewtonSystem {
     }
   }
 
-  /// What an interval's residual rows take from one of its nodes (intervalRows in double):
-  /// the spatial terms, the weighted rate, the inertia rows at the new and the last level.
+  /// What an interval's rows take from one of its nodes: the node's unknowns (S16: seeded on
+  /// that node's sixteen), the spatial terms, the inertia rows at the new and the last level.
+  template <class S>
   struct NodeRows {
-    NodeTerms<double> terms;
-    double ydw[N], in1[kInertiaRows], in0[kInertiaRows];
+    S y[N];
+    NodeTerms<S> terms;
+    S in1[kInertiaRows], in0[kInertiaRows];
   };
 
   /// Node k's rows for an interval of material m: the quantities intervalSpatial and
   /// intervalInertia compute there, in the same operations.
-  void nodeRows(const Eigen::VectorXd& Yv, int k, const Material& m, NodeRows& out) const {
+  template <class S>
+  void nodeRows(const Eigen::VectorXd& Yv, int k, const Material& m, NodeRows<S>& out) const {
     const auto [am, ak, c1, c0] = weights();
     (void)ak;
     const Environment& env = im_.problem.environment;
-    const double* y = Yv.data() + N * k;
     const double* yp = im_.Y.data() + N * k;
     const double* ydp = im_.Yd.data() + N * k;
+    S ydw[N], ypc[N];
     for (int q = 0; q < N; ++q) {
-      const double yd = c1 * (y[q] - yp[q]) - c0 * ydp[q];
-      out.ydw[q] = (1.0 - am) * yd + am * ydp[q];  // weighted rate of eq. 30
+      out.y[q] = variable<S>(Yv[N * k + q], N, q);
+      const S yd = c1 * (out.y[q] - yp[q]) - c0 * ydp[q];
+      ydw[q] = (1.0 - am) * yd + am * ydp[q];  // weighted rate of eq. 30
+      ypc[q] = constant<S>(yp[q]);
     }
     const std::size_t kk = static_cast<std::size_t>(k);
-    nodeTerms(env, m, y, water_[kk], out.terms);
-    inertia(env, m, y, out.ydw, out.terms.R, water_[kk], out.in1);
-    double Rp[9];
-    quat::matrix(yp + Q0, Rp);
-    inertia(env, m, yp, out.ydw, Rp, im_.water[kk], out.in0);
+    nodeTerms(env, m, out.y, water_[kk], out.terms);
+    inertia(env, m, out.y, ydw, out.terms.R, water_[kk], out.in1);
+    S Rp[9];
+    quat::matrix(ypc + Q0, Rp);
+    inertia(env, m, ypc, ydw, Rp, im_.water[kk], out.in0);
   }
 
-  /// intervalRows in double (the residual alone, for Newton iterations that keep a Jacobian):
-  /// a node's terms once for the two intervals it ends where they share a material, the same
-  /// values as the generic rows bit for bit; junctions and a parted interval as there.
-  void residualRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, int j0, int j1) const {
+  /// A node's value into the interval's scalar: its derivatives in the first (half 0, node j) or
+  /// the second sixteen (half 1, node j + 1) of thirty-two. The identity in double.
+  static double lift(double v, int) { return v; }
+  static AD32 lift(const AD16& v, int half) {
+    AD32 out(v.value());
+    out.derivatives().setZero();
+    out.derivatives().template segment<N>(N * half) = v.derivatives();
+    return out;
+  }
+  template <class S16, class S32>
+  static void lift(const NodeRows<S16>& in, int half, NodeRows<S32>& out) {
+    for (int q = 0; q < N; ++q) out.y[q] = lift(in.y[q], half);
+    for (int q = 0; q < 9; ++q) out.terms.R[q] = lift(in.terms.R[q], half);
+    out.terms.T = lift(in.terms.T, half);
+    out.terms.p = lift(in.terms.p, half);
+    for (int q = 0; q < 3; ++q) out.terms.g[q] = lift(in.terms.g[q], half);
+    for (int q = 0; q < kInertiaRows; ++q) {
+      out.in1[q] = lift(in.in1[q], half);
+      out.in0[q] = lift(in.in0[q], half);
+    }
+  }
+
+  /// The rows of intervals [j0, j1): a node's terms once for the two intervals it ends where
+  /// they share a material (in S16, seeded on its own unknowns), combined per interval in S32
+  /// (its derivatives by node j's unknowns, then node j + 1's): the values and derivatives of
+  /// intervalRowsAs<S32>, which takes junctions and a parted interval.
+  template <class S16, class S32>
+  void sharedRows(const Eigen::VectorXd& Yv, Eigen::VectorXd& R, BandedMatrix* J, int j0, int j1) const {
     const double ak = weights().ak;
-    NodeRows rows[2];
-    NodeRows *a = &rows[0], *b = &rows[1];
+    NodeRows<S16> rows[2];
+    NodeRows<S16> *a = &rows[0], *b = &rows[1];
+    NodeRows<S32> la, lb;
     const Material* kept = nullptr;  // the material *a holds node j's rows for (null: none)
     for (int j = j0; j < j1; ++j) {
       const MeshInterval& iv = im_.mesh.intervals[static_cast<std::size_t>(j)];
       if (j == im_.parted || !(iv.h > 0.0)) {
-        intervalRowsAs<double>(Yv, R, nullptr, j, j + 1);
+        intervalRowsAs<S32>(Yv, R, J, j, j + 1);
         kept = nullptr;
         continue;
       }
       const Material& m = im_.problem.materials[iv.material];
       if (kept != &m) nodeRows(Yv, j, m, *a);
       nodeRows(Yv, j + 1, m, *b);
-      double r[N], in1[kInertiaRows], in0[kInertiaRows];
-      intervalSpatialOf(m, iv.h, Yv.data() + N * j, Yv.data() + N * (j + 1), a->terms, b->terms, r);
-      intervalInertiaOf(iv.h, a->in1, b->in1, in1);
-      intervalInertiaOf(iv.h, a->in0, b->in0, in0);
+      const NodeRows<S32>*na, *nb;
+      if constexpr (std::is_same_v<S16, S32>) {
+        na = a;
+        nb = b;
+      } else {
+        lift(*a, 0, la);
+        lift(*b, 1, lb);
+        na = &la;
+        nb = &lb;
+      }
+      S32 r[N], in1[kInertiaRows], in0[kInertiaRows];
+      intervalSpatialOf(m, iv.h, na->y, nb->y, na->terms, nb->terms, r);
+      intervalInertiaOf(iv.h, na->in1, nb->in1, in1);
+      intervalInertiaOf(iv.h, na->in0, nb->in0, in0);
       for (int q = 0; q < kInertiaRows; ++q)
         r[q] = (1.0 - ak) * (in1[q] + r[q]) + ak * (in0[q] + im_.S[kInertiaRows * j + q]);
-      const int row = end_rows_ + N * j;
-      for (int q = 0; q < N; ++q) R[row + q] = r[q];
+      scatter(r, N, end_rows_ + N * j, N * j, 2 * N, R, J);
       std::swap(a, b);
       kept = &m;
     }
