@@ -15,9 +15,23 @@ inline void scatter(const double* r, int rows, int row0, int, int, Eigen::Vector
   for (int q = 0; q < rows; ++q) R[row0 + q] = r[q];
 }
 
-/// AD rows into R, and their nonzero derivatives into J at columns col0 .. col0 + cols.
+/// AD rows into R, and their nonzero derivatives into J at columns col0 .. col0 + cols. Where J
+/// has a block structure whose rows start at col0 (BandedMatrix::blockRow), a row's derivatives
+/// are copied whole, zeros as +0 (the entries the element-wise copy leaves as cleared).
 template <class AD>
 void scatter(const AD* r, int rows, int row0, int col0, int cols, Eigen::VectorXd& R, BandedMatrix* J) {
+  using Der = typename AD::DerType;
+  constexpr int kCols = Der::RowsAtCompileTime;
+  if constexpr (kCols > 0) {
+    if (J && cols == kCols && J->blockSize() > 0 && kCols <= 2 * J->blockSize() &&
+        J->blockRowFirstColumn(row0) == col0 && J->blockRowFirstColumn(row0 + rows - 1) == col0) {
+      for (int q = 0; q < rows; ++q) {
+        R[row0 + q] = r[q].value();
+        Eigen::Map<Eigen::Matrix<double, kCols, 1>>(J->blockRow(row0 + q)) = r[q].derivatives().array() + 0.0;
+      }
+      return;
+    }
+  }
   for (int q = 0; q < rows; ++q) {
     R[row0 + q] = r[q].value();
     if (!J || r[q].derivatives().size() == 0) continue;

@@ -78,6 +78,10 @@ class BandedMatrix {
   double* blockRow(int i) {
     return block_ > 0 ? rows_.data() + static_cast<std::size_t>(i) * (2 * block_) : nullptr;
   }
+  /// Block structure: the first column of row i's entries (blockRow), its first node's; block
+  /// size 0 without a block structure.
+  int blockRowFirstColumn(int i) const { return block_ * rowNode(i); }
+  int blockSize() const { return block_; }
   bool inBand(int i, int j) const { return j - i <= ku_ && i - j <= kl_; }
   /// Block structure: whether (i, j) is one of the pattern's entries (always true without one).
   bool inPattern(int i, int j) const {
