@@ -149,6 +149,9 @@ void BM_SpreadMooringStorm(benchmark::State& state) {
       sum.jacobians += t.jacobians;
       sum.fallback_substeps += t.fallback_substeps;
       sum.top_off_path += t.top_off_path;
+      sum.failed_tries += t.failed_tries;
+      sum.failed_jacobians += t.failed_jacobians;
+      sum.fallback_retries += t.fallback_retries;
     }
   }
   const double steps = std::max(1.0, static_cast<double>(sum.steps));
@@ -161,6 +164,11 @@ void BM_SpreadMooringStorm(benchmark::State& state) {
   state.counters["cuts"] = static_cast<double>(sum.cuts);
   state.counters["fallback_substeps"] = static_cast<double>(sum.fallback_substeps);
   state.counters["top_off_path"] = static_cast<double>(sum.top_off_path);
+  // Implicit tries that failed (the fallback took their steps), those right after a fallback
+  // step among them, and the Jacobians the failed tries assembled.
+  state.counters["failed_tries"] = static_cast<double>(sum.failed_tries);
+  state.counters["fallback_retries"] = static_cast<double>(sum.fallback_retries);
+  state.counters["failed_jacobians"] = static_cast<double>(sum.failed_jacobians);
 }
 
 void BM_VesselAt1kHz(benchmark::State& state) {

@@ -393,7 +393,7 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   im.totals.newton_iterations += s.iterations;
   im.totals.jacobians += work.assemblies;
   if (!s.converged) {
-    if (im.in_fallback) ++im.totals.fallback_retries;
+    lumped::countFailedTry(im, 0);
     im.newton_matrix.setZero();  // factored at an iterate that did not converge
     std::ostringstream os;
     os << "t = " << t_new << " s (dt = " << dt << " s): " << s.message;
@@ -436,7 +436,7 @@ StepReport DynamicSolver2D::advanceTo(double t_end) {
     Impl* im;
     int levels(int max_levels) const {
       if (!im->opt.fallback || !fallbackUnavailable(*im).empty()) return max_levels;
-      if (stayInFallback(*im)) return -1;
+      if (lumped::waitAfterFailedRetry(*im) || stayInFallback(*im)) return -1;
       return im->in_fallback ? 0 : std::min(max_levels, im->opt.fallback_after_cuts);
     }
     bool operator()(double dt, StepReport& rep) const {

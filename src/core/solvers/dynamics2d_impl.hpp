@@ -56,6 +56,9 @@ struct DynamicSolver2D::Impl {
   /// Time [s] of the fallback steps in a row taken without trying the implicit step first
   /// (stayInFallback).
   double fallback_skipped_time = 0.0;
+  /// Base steps still to go to the fallback without an implicit try after a retry failed
+  /// (lumped::kRetryWait).
+  int retry_wait = 0;
   /// The reference lengths of the last fallback step's intervals (lumped::Line::ref), which the
   /// next one keeps while the line stays in the fallback.
   std::vector<double> fallback_ref;

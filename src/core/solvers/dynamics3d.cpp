@@ -240,7 +240,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   im.totals.newton_iterations += s.iterations;
   im.totals.jacobians += work.assemblies;
   if (!s.converged) {
-    if (im.in_fallback) ++im.totals.fallback_retries;
+    lumped::countFailedTry(im, work.assemblies);
     winchUndoStep(im);
     im.newton_matrix.setZero();  // factored at an iterate that did not converge
     std::ostringstream os;
@@ -286,7 +286,7 @@ StepReport DynamicSolver3D::advanceTo(double t_end) {
       // A line the fallback cannot take (a buoy, body or force top; the winch running) keeps every
       // cut level, as without the fallback.
       if (!im->opt.fallback || !fallbackUnavailable(*im, im->t + im->opt.dt).empty()) return max_levels;
-      if (stayInFallback(*im)) return -1;
+      if (lumped::waitAfterFailedRetry(*im) || stayInFallback(*im)) return -1;
       return im->in_fallback ? 0 : std::min(max_levels, im->opt.fallback_after_cuts);
     }
     bool operator()(double dt, StepReport& rep) const {
@@ -340,6 +340,7 @@ struct DynamicSolver3D::Saved {
   double last_dt = 0.0;
   bool in_fallback = false;
   double fallback_skipped_time = 0.0;
+  int retry_wait = 0;
   std::vector<double> fallback_ref;
   Totals totals;
   WinchSaved winch;  ///< the mesh a winch changes, its program and length
@@ -364,6 +365,7 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->last_dt = im.last_dt;
   s->in_fallback = im.in_fallback;
   s->fallback_skipped_time = im.fallback_skipped_time;
+  s->retry_wait = im.retry_wait;
   s->fallback_ref = im.fallback_ref;
   s->totals = im.totals;
   s->winch = winchSave(im);
@@ -391,6 +393,7 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.last_dt = s.last_dt;
   im.in_fallback = s.in_fallback;
   im.fallback_skipped_time = s.fallback_skipped_time;
+  im.retry_wait = s.retry_wait;
   im.fallback_ref = s.fallback_ref;
   im.totals = s.totals;
   winchRestore(im, s.winch);

@@ -95,6 +95,12 @@ constexpr double kTopRateMismatch = 0.5;
 /// Newton iterations of the first implicit step after a fallback step: a line that is taut again
 /// converges in a handful (the state is the lumped line's, close to the box solution).
 constexpr int kRetryIterations = 10;
+/// After such a retry fails, this many base steps go to the fallback without an implicit try.
+/// Retries fail in runs while a line's top is slack (the spread mooring at Hs 4, 60 s: 326 of
+/// 403 retries failed, in runs of five to eight, each costing kRetryIterations iterations and a
+/// Jacobian at nearly every one, several times a fallback step); trying every second step
+/// halves them and returns to the implicit step at most one step later.
+constexpr int kRetryWait = 1;
 
 /// The box scheme's coordinate rows (eq. 42) put two nodes h/2 |p_a t_a + p_b t_b| apart:
 /// h (1 + eps) cos(dphi / 2) where the line turns by dphi between the nodes' tangents, shorter
@@ -334,6 +340,26 @@ void countFallbackStep(Impl& im, Report& rep, long substeps, const Line& L) {
   im.totals.fallback_substeps += substeps;
   im.in_fallback = true;
   im.fallback_ref = L.ref;
+}
+
+/// An implicit try that did not converge, on a solver's state `im`: counted, and after a retry
+/// (the first try after a fallback step) the next kRetryWait base steps wait in the fallback.
+template <class Impl>
+void countFailedTry(Impl& im, long jacobians) {
+  ++im.totals.failed_tries;
+  im.totals.failed_jacobians += jacobians;
+  if (!im.in_fallback) return;
+  ++im.totals.fallback_retries;
+  im.retry_wait = kRetryWait;
+}
+
+/// Whether a base step goes to the fallback without an implicit try because a retry failed
+/// kRetryWait or fewer steps ago (countFailedTry); counts the step off.
+template <class Impl>
+bool waitAfterFailedRetry(Impl& im) {
+  if (!im.in_fallback || im.retry_wait <= 0) return false;
+  --im.retry_wait;
+  return true;
 }
 
 /// After a fallback step: whether the next base step goes to the fallback at once, without an

@@ -72,6 +72,9 @@ class DynamicSolver2D {
     long fallback_steps = 0;     ///< steps taken by the fallback (3-D solver; included in steps)
     long fallback_substeps = 0;  ///< the fallback's explicit sub-steps
     long fallback_retries = 0;   ///< implicit base steps tried and failed right after a fallback step
+    /// Implicit tries that did not converge (every step size; fallback_retries among them), and
+    /// the Jacobians they assembled (3-D solver; included in jacobians).
+    long failed_tries = 0, failed_jacobians = 0;
     /// Converged implicit steps refused because the top node had left the top's path (a folded
     /// top interval; docs/method.md "Slack and snap"); a cut step or the fallback took them.
     long top_off_path = 0;
