@@ -99,13 +99,16 @@ TEST(Dynamics3DFallback, WithoutTheFallbackTheSameRunStops) {
 
 // While the line stays folded after a fallback step (a node's interval shorter than unstretched,
 // hence a node at zero tension), the next base step goes to the fallback without an implicit try
-// (no Newton iteration), for at most 1 s in a row (kMaxSkippedTime in dynamics3d_fallback.cpp),
-// and then the implicit step is tried again.
+// (no Newton iteration), for at most 1 s in a row (kMaxSkippedTime in lumped_line.hpp), and then
+// the implicit step is tried again. After a retry (the first try after a fallback step) fails,
+// the next base step (kRetryWait) goes to the fallback without a try whether folded or not, and
+// the one after it tries again unless the line is folded.
 TEST(Dynamics3DFallback, AFoldedLineStaysInTheFallbackWithoutImplicitTries) {
   const Problem p = heavedSlackNoCompression(12.0);
   DynamicSolver3D solver(p);
-  constexpr double kMaxSkippedTime = 1.0;  // [s] as in dynamics3d_fallback.cpp
-  int skipped = 0, in_a_row = 0, longest_run = 0;
+  constexpr double kMaxSkippedTime = 1.0;  // [s] as in lumped_line.hpp
+  constexpr int kRetryWait = 1;            // [base steps] as in lumped_line.hpp
+  int skipped = 0, in_a_row = 0, longest_run = 0, waits = 0, since_failed_retry = -1;
   const int steps = static_cast<int>(std::lround(p.dynamics.duration / p.dynamics.dt));
   for (int k = 1; k <= steps; ++k) {
     const auto before = solver.totals();
@@ -113,21 +116,31 @@ TEST(Dynamics3DFallback, AFoldedLineStaysInTheFallbackWithoutImplicitTries) {
     const StepReport rep = solver.advanceTo(k * p.dynamics.dt);
     ASSERT_TRUE(rep.ok) << rep.message;
     const auto after = solver.totals();
+    double least = std::numeric_limits<double>::infinity();
+    for (const auto& node : state.nodes) least = std::min(least, node.tension);
+    const bool waiting = since_failed_retry >= 0 && since_failed_retry < kRetryWait;
     if (after.newton_iterations == before.newton_iterations) {
-      // No implicit try: a fallback step, right after one, from a folded line.
+      // No implicit try: a fallback step, right after one, from a folded line or in the wait.
       EXPECT_EQ(after.fallback_steps, before.fallback_steps + 1) << "step " << k;
       EXPECT_GT(before.fallback_steps, 0) << "step " << k;
-      double least = std::numeric_limits<double>::infinity();
-      for (const auto& node : state.nodes) least = std::min(least, node.tension);
-      EXPECT_EQ(least, 0.0) << "step " << k << ": skipped the implicit try on a line with no slack node";
+      EXPECT_TRUE(least == 0.0 || waiting)
+          << "step " << k << ": skipped the implicit try on a line with no slack node, not after a failed retry";
       ++skipped;
-      longest_run = std::max(longest_run, ++in_a_row);
+      waits += waiting && least > 0.0;
+      if (!waiting) longest_run = std::max(longest_run, ++in_a_row);
     } else {
+      EXPECT_FALSE(waiting) << "step " << k << ": an implicit try right after a failed retry";
       in_a_row = 0;
     }
+    since_failed_retry = after.fallback_retries > before.fallback_retries ? 0
+                         : since_failed_retry >= 0                       ? since_failed_retry + 1
+                                                                         : -1;
   }
   EXPECT_GT(skipped, 0) << "the heave folds the line for several base steps in every cycle";
-  std::printf("heaved slack line: %d base steps without an implicit try, at most %d in a row\n", skipped, longest_run);
+  EXPECT_GT(solver.totals().fallback_retries, 0) << "no failed retry: the wait is not exercised";
+  std::printf("heaved slack line: %d base steps without an implicit try (%d waits after a failed retry on an "
+              "unfolded line; %ld failed retries), at most %d in a row\n", skipped, waits,
+              solver.totals().fallback_retries, longest_run);
   // The heave keeps the line folded for longer than the cap: the runs stop at it, exactly.
   EXPECT_EQ(longest_run, static_cast<int>(std::lround(kMaxSkippedTime / p.dynamics.dt)));
 }
@@ -165,19 +178,36 @@ TEST(Dynamics3DFallback, SmallVesselRidesOutAShortHs4StormWithChainThatDoesNotPu
   VesselLockstepOptions lo;
   lo.restart_failed_lines = false;
   VesselLockstep run(s, o, lo);
+  ASSERT_NEAR(samples[1].t - samples[0].t, o.dt, 1e-12) << "a sample a base step (the retry check below)";
   double lowest = std::numeric_limits<double>::infinity();
+  // After a failed retry (the first implicit try after a fallback step) the next base step of that
+  // line goes to the fallback without a try (lumped::kRetryWait = 1): no Newton iteration.
+  std::vector<DynamicSolver3D::Totals> last(s.lines.size());
+  std::vector<char> retry_failed(s.lines.size(), 0);
+  long waits = 0;
   for (const PoseSample& ps : samples) {
     const VesselLockstep::Result r = run.onSample(ps.t, ps.pose, &ps.twist);
     ASSERT_TRUE(r.outcome == VesselLockstep::Outcome::Started || r.outcome == VesselLockstep::Outcome::Advanced)
         << "t = " << ps.t << ": " << r.message;
     for (const StaticResult& line : run.lines())
       for (const auto& node : line.nodes) lowest = std::min(lowest, node.tension);
+    for (std::size_t i = 0; i < s.lines.size(); ++i) {
+      const DynamicSolver3D::Totals now = run.dynamics().lineTotals(i);
+      if (retry_failed[i]) {
+        EXPECT_EQ(now.newton_iterations, last[i].newton_iterations) << "line " << i << ", t = " << ps.t;
+        EXPECT_EQ(now.fallback_steps, last[i].fallback_steps + 1) << "line " << i << ", t = " << ps.t;
+        ++waits;
+      }
+      retry_failed[i] = now.fallback_retries > last[i].fallback_retries;
+      last[i] = now;
+    }
   }
   EXPECT_DOUBLE_EQ(run.solverTime(), samples.back().t - samples.front().t);
   EXPECT_GE(lowest, 0.0) << "chain does not push";
+  EXPECT_GT(waits, 0) << "no failed retry: the wait is not exercised";
   long fallback = 0;
   for (std::size_t i = 0; i < s.lines.size(); ++i) fallback += run.dynamics().lineFallbackSteps(i);
-  std::printf("small vessel, Hs 4 m for 60 s: %ld fallback steps\n", fallback);
+  std::printf("small vessel, Hs 4 m for 60 s: %ld fallback steps, %ld waits after a failed retry\n", fallback, waits);
 }
 
 TEST(Dynamics3DFallback, SpreadMooringRidesOutAShortHs6StormWithoutSpuriousSnapLoads) {
