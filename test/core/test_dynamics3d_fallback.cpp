@@ -97,18 +97,22 @@ TEST(Dynamics3DFallback, WithoutTheFallbackTheSameRunStops) {
   EXPECT_NE(r.message.find("cuts"), std::string::npos) << r.message;
 }
 
-// While the line stays folded after a fallback step (a node's interval shorter than unstretched,
+// While the line stays slack after a fallback step (a node's interval shorter than unstretched,
 // hence a node at zero tension), the next base step goes to the fallback without an implicit try
 // (no Newton iteration), for at most 1 s in a row (kMaxSkippedTime in lumped_line.hpp), and then
-// the implicit step is tried again. After a retry (the first try after a fallback step) fails,
-// the next base step (kRetryWait) goes to the fallback without a try whether folded or not, and
-// the one after it tries again unless the line is folded.
-TEST(Dynamics3DFallback, AFoldedLineStaysInTheFallbackWithoutImplicitTries) {
+// the implicit step is tried again. Any slack node keeps the line there, however little it is
+// shortened (lumped::kSlackStrainLimit = 0). After a retry (the first try after a fallback step)
+// fails, the next base step (kRetryWait) goes to the fallback without a try whether slack or not,
+// and the one after it tries again unless the line is slack.
+TEST(Dynamics3DFallback, ASlackLineStaysInTheFallbackWithoutImplicitTries) {
   const Problem p = heavedSlackNoCompression(12.0);
   DynamicSolver3D solver(p);
   constexpr double kMaxSkippedTime = 1.0;  // [s] as in lumped_line.hpp
   constexpr int kRetryWait = 1;            // [base steps] as in lumped_line.hpp
   int skipped = 0, in_a_row = 0, longest_run = 0, waits = 0, since_failed_retry = -1;
+  int untried_run = 0;            // base steps in a row without an implicit try
+  int slack_tries = 0;            // implicit tries after a fallback step from a slack line
+  bool after_fallback = false;    // the last base step was a fallback step
   const int steps = static_cast<int>(std::lround(p.dynamics.duration / p.dynamics.dt));
   for (int k = 1; k <= steps; ++k) {
     const auto before = solver.totals();
@@ -116,8 +120,11 @@ TEST(Dynamics3DFallback, AFoldedLineStaysInTheFallbackWithoutImplicitTries) {
     const StepReport rep = solver.advanceTo(k * p.dynamics.dt);
     ASSERT_TRUE(rep.ok) << rep.message;
     const auto after = solver.totals();
-    double least = std::numeric_limits<double>::infinity();
-    for (const auto& node : state.nodes) least = std::min(least, node.tension);
+    double least = std::numeric_limits<double>::infinity(), least_strain = least;
+    for (const auto& node : state.nodes) {
+      least = std::min(least, node.tension);
+      least_strain = std::min(least_strain, node.strain);
+    }
     const bool waiting = since_failed_retry >= 0 && since_failed_retry < kRetryWait;
     if (after.newton_iterations == before.newton_iterations) {
       // No implicit try: a fallback step, right after one, from a folded line or in the wait.
@@ -126,21 +133,31 @@ TEST(Dynamics3DFallback, AFoldedLineStaysInTheFallbackWithoutImplicitTries) {
       EXPECT_TRUE(least == 0.0 || waiting)
           << "step " << k << ": skipped the implicit try on a line with no slack node, not after a failed retry";
       ++skipped;
+      ++untried_run;
       waits += waiting && least > 0.0;
       if (!waiting) longest_run = std::max(longest_run, ++in_a_row);
     } else {
       EXPECT_FALSE(waiting) << "step " << k << ": an implicit try right after a failed retry";
+      if (after_fallback && least_strain < 0.0) {
+        // Only the cap lets a slack line try the implicit step.
+        ++slack_tries;
+        EXPECT_GE(untried_run * p.dynamics.dt, kMaxSkippedTime - 1e-9)
+            << "step " << k << ": an implicit try from a slack line (least strain " << least_strain << ") after "
+            << untried_run << " base steps in the fallback";
+      }
       in_a_row = 0;
+      untried_run = 0;
     }
+    after_fallback = after.fallback_steps > before.fallback_steps;
     since_failed_retry = after.fallback_retries > before.fallback_retries ? 0
                          : since_failed_retry >= 0                       ? since_failed_retry + 1
                                                                          : -1;
   }
   EXPECT_GT(skipped, 0) << "the heave folds the line for several base steps in every cycle";
   EXPECT_GT(solver.totals().fallback_retries, 0) << "no failed retry: the wait is not exercised";
-  std::printf("heaved slack line: %d base steps without an implicit try (%d waits after a failed retry on an "
-              "unfolded line; %ld failed retries), at most %d in a row\n", skipped, waits,
-              solver.totals().fallback_retries, longest_run);
+  std::printf("heaved slack line: %d base steps without an implicit try (%d waits after a failed retry on a "
+              "line with no slack node; %ld failed retries), at most %d in a row; %d tries from a slack line at "
+              "the cap\n", skipped, waits, solver.totals().fallback_retries, longest_run, slack_tries);
   // The heave keeps the line folded for longer than the cap: the runs stop at it, exactly.
   EXPECT_EQ(longest_run, static_cast<int>(std::lround(kMaxSkippedTime / p.dynamics.dt)));
 }

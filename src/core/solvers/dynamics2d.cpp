@@ -431,7 +431,7 @@ StepReport DynamicSolver2D::advanceTo(double t_end) {
   // Base steps with the adaptive cutting of section 4.3 (dynamic_run.hpp). The fallback
   // (dynamics2d_fallback.cpp) takes what is left of a base step that fails at
   // dynamics.fallback_after_cuts cuts, as in 3-D: right after a fallback step a failed base step
-  // goes to it at once, and while the line is still folded (stayInFallback) without an implicit try.
+  // goes to it at once, and while the line is still slack (stayInFallback) without an implicit try.
   struct Fallback {
     Impl* im;
     int levels(int max_levels) const {

@@ -278,7 +278,7 @@ StepReport DynamicSolver3D::advanceTo(double t_end) {
   Impl& im = *impl_;
   // The fallback (dynamics3d_fallback.cpp) takes what is left of a base step that fails at
   // dynamics.fallback_after_cuts cuts; right after a fallback step a failed base step goes to it
-  // at once, and while the line is still folded (stayInFallback) the base step goes to it
+  // at once, and while the line is still slack (stayInFallback) the base step goes to it
   // without an implicit try.
   struct Fallback {
     Impl* im;

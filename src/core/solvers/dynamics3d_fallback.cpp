@@ -391,7 +391,7 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
 }
 
 bool stayInFallback(const DynamicSolver3D::Impl& im) {
-  return lumped::stayFolded(im, N, EPS);
+  return lumped::staySlack(im, N, EPS);
 }
 
 }  // namespace core

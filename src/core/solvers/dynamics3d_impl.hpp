@@ -178,9 +178,8 @@ std::string fallbackUnavailable(const DynamicSolver3D::Impl& im, double t_new);
 /// false (the reason appended to rep.message) when it cannot.
 bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep);
 /// After a fallback step: whether the next base step goes to the fallback at once, without an
-/// implicit try (the line is still folded: some node shorter than its unstretched length by
-/// more than kFoldedStrain in a material without compression, and for less than kMaxSkippedTime
-/// in a row).
+/// implicit try (the line is still slack: some node of a material without compression shorter
+/// than its unstretched length, and for less than kMaxSkippedTime in a row; lumped::staySlack).
 bool stayInFallback(const DynamicSolver3D::Impl& im);
 
 // Line events (dynamics3d_events.cpp; docs/method.md "Line events").

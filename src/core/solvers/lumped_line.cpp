@@ -16,6 +16,8 @@ void lumpMasses(const Setup& s, Line& L) {
   L.added.assign(n, 0.0);
   L.body_mass.assign(n, 0.0);
   L.tangent.assign(n, Vec3::Zero());
+  L.chord_len.assign(n > 0 ? n - 1 : 0, 0.0);
+  L.chord_dir.assign(n > 0 ? n - 1 : 0, Vec3::Zero());
   L.ref.assign(n > 0 ? n - 1 : 0, 0.0);
   for (int j = 0; j + 1 < n; ++j) {
     const MeshInterval& iv = s.mesh->intervals[static_cast<std::size_t>(j)];
@@ -36,6 +38,41 @@ void lumpMasses(const Setup& s, Line& L) {
   if (const Body* b = s.top_body) L.body_mass[static_cast<std::size_t>(n) - 1] += b->mass + b->added_mass;
 }
 
+Constants Constants::of(const Setup& s, int n) {
+  Constants c;
+  const double rho = s.problem->environment.water_density;
+  c.intervals.resize(n > 0 ? static_cast<std::size_t>(n) - 1 : 0);
+  for (std::size_t j = 0; j < c.intervals.size(); ++j) {
+    const MeshInterval& iv = s.mesh->intervals[j];
+    if (!(iv.h > 0.0)) continue;
+    Interval& ci = c.intervals[j];
+    const Material& m = s.problem->materials[iv.material];
+    ci.m = &m;
+    ci.h = iv.h;
+    ci.half_weight = 0.5 * iv.h * m.wet_weight;
+    ci.linear = m.tension_strain.empty();
+    ci.band = m.slackBand();
+    ci.damper = kAxialDampingRatio * std::sqrt(std::max(m.EA, 0.0) * m.mass) * iv.h;
+    ci.drag = -0.5 * rho * m.diameter * iv.h;
+    ci.drag_rate = 0.5 * rho * m.diameter * iv.h;
+  }
+  // The seabed acts on each node over half of each adjacent interval, with the upper one's
+  // material where both are cable.
+  c.nodes.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    Node& cn = c.nodes[static_cast<std::size_t>(j)];
+    for (int k : {j - 1, j}) {
+      if (k < 0 || k + 1 >= n) continue;
+      const Interval& ci = c.intervals[static_cast<std::size_t>(k)];
+      if (ci.m) {
+        cn.length += 0.5 * ci.h;
+        cn.m = ci.m;
+      }
+    }
+  }
+  return c;
+}
+
 void setReferenceLengths(const Setup& s, const std::vector<Vec3>& tangent, Line& L) {
   for (int j = 0; j + 1 < L.n; ++j) {
     const MeshInterval& iv = s.mesh->intervals[static_cast<std::size_t>(j)];
@@ -53,9 +90,11 @@ void updateTangents(const Setup& s, Line& L) {
     if (!(iv.h > 0.0) || j == s.parted) continue;
     const Vec3 d = L.x[j + 1] - L.x[j];
     const double len = d.norm();
+    L.chord_len[j] = len;
     if (len < kShortChord * iv.h) continue;
-    L.tangent[j] += d / len;
-    L.tangent[j + 1] += d / len;
+    L.chord_dir[j] = d / len;
+    L.tangent[j] += L.chord_dir[j];
+    L.tangent[j + 1] += L.chord_dir[j];
   }
   for (int j = 0; j < n; ++j) {
     const double t = L.tangent[j].norm();

@@ -65,15 +65,16 @@ constexpr double kCourant = 0.4;
 constexpr double kShortChord = 1e-6;
 
 // When the solvers go to the fallback and leave it (dynamics2d.cpp, dynamics3d.cpp):
-/// A node whose strain is below -kFoldedStrain (its intervals 0.1 % shorter than unstretched:
-/// chain heaped or folded, carrying no tension) marks the line as still folded after a fallback
-/// step. On the spread mooring at Hs 4 (30 s, 317 implicit tries right after a fallback step)
-/// 297 of the 302 tries from a folded state failed, and 11 of the 15 from an unfolded one
-/// converged; the five folded ones that converged were within -1.1e-4 of zero.
-constexpr double kFoldedStrain = 1e-3;
+/// A node of a material without compression whose strain is below -kSlackStrainLimit (slack:
+/// chain heaped, folded or hanging loose, carrying no tension) marks the line as still slack
+/// after a fallback step. Any slack node will do: on the spread mooring at Hs 4 (60 s, 247
+/// implicit tries right after a fallback step) 189 of the 204 tries with a slack node failed, and
+/// 38 of the 43 without one converged; with the limit at a strain of -1e-3 (folded lines only)
+/// the tries from -1e-3 to 0 were 143 of the 207 failed tries of the run.
+constexpr double kSlackStrainLimit = 0.0;
 /// For at most this long [s] of simulated time in a row base steps go to the fallback without an
 /// implicit try (whatever the steps' length: in lockstep every sample ends a step): a
-/// heap of chain lying on the seabed can keep a line "folded" long after the implicit step could
+/// heap of chain lying on the seabed can keep a line "slack" long after the implicit step could
 /// take it again.
 constexpr double kMaxSkippedTime = 1.0;
 /// A converged implicit step whose top node is farther than this fraction of the top interval
@@ -130,6 +131,10 @@ struct Line {
   std::vector<double> added;      ///< added mass across the tangent [kg] (line)
   std::vector<double> body_mass;  ///< inline bodies' mass plus added mass [kg] (isotropic)
   std::vector<Vec3> tangent;      ///< unit tangent at the node (mean of the chords)
+  /// Each interval's chord at the last updateTangents: its length [m] and, where it is at least
+  /// kShortChord of the interval, its direction (what forces() takes at the same positions).
+  std::vector<double> chord_len;
+  std::vector<Vec3> chord_dir;
 };
 
 /// Water velocity at a node at the start and the end of the step [m/s].
@@ -148,6 +153,33 @@ struct Setup {
   const Body* top_body = nullptr;
 };
 
+/// What forces() takes of each interval and node that does not change over a step, worked out
+/// once a step (Constants::of) with the same operations, in the same order, as at each sub-step.
+struct Constants {
+  struct Interval {
+    const Material* m = nullptr;  ///< nullptr: a junction (h = 0)
+    double h = 0.0;               ///< unstretched length [m]
+    double half_weight = 0.0;     ///< 0.5 h w: the weight each node carries [N]
+    bool linear = false;          ///< a linear law (EA): its slope, so its damper, is constant
+    double band = 0.0;            ///< the no-compression law's slack band (Material::slackBand) [N]
+    double damper = 0.0;          ///< kAxialDampingRatio sqrt(EA m) h of a linear law [N s]
+    double drag = 0.0;            ///< -0.5 rho d h [kg/m]
+    double drag_rate = 0.0;       ///< 0.5 rho d h [kg/m]
+    /// T(eps) of the material (Material::tension, the slack band kept).
+    double tension(double eps) const {
+      const double T = linear ? m->EA * eps : m->rawTension(eps);
+      return m->compression ? T : slackRamp(T, T, band);
+    }
+  };
+  struct Node {
+    const Material* m = nullptr;  ///< the material the seabed acts on (nullptr: none)
+    double length = 0.0;          ///< tributary length [m]: half of each adjacent interval
+  };
+  std::vector<Interval> intervals;
+  std::vector<Node> nodes;
+  static Constants of(const Setup& s, int n);
+};
+
 /// Masses of the nodes of `L` (L.x, L.v are the caller's: set them after this).
 void lumpMasses(const Setup& s, Line& L);
 /// cos(dphi / 2) of the turn between unit tangents ta and tb, or 1 where it is below
@@ -161,7 +193,7 @@ inline double chordFactor(const Vec3& ta, const Vec3& tb) {
 /// so that the lumped line starts with the box state's strains.
 void setReferenceLengths(const Setup& s, const std::vector<Vec3>& tangent, Line& L);
 /// Unit tangents at the nodes: the mean of the adjacent chords' directions (one-sided at the
-/// ends and junctions).
+/// ends and junctions); the chords' lengths and directions kept in L.chord_len, L.chord_dir.
 void updateTangents(const Setup& s, Line& L);
 /// The largest stable sub-step [s]: kCourant times 2 / w_max of the stiffest interval's axial
 /// mode (and of each node's seabed spring).
@@ -171,9 +203,11 @@ inline double chordStrain(const Line& L, int j) {
   return (L.x[static_cast<std::size_t>(j) + 1] - L.x[static_cast<std::size_t>(j)]).norm() / L.ref[static_cast<std::size_t>(j)] - 1.0;
 }
 
-/// Forces on the lumped nodes at time fraction `w` of the step [N].
+/// Forces on the lumped nodes at time fraction `w` of the step [N], with the chords of the last
+/// updateTangents at the same positions and the step's constants `c`.
 template <class Model>
-void forces(const Setup& s, const Model& model, const std::vector<NodeWater>& water, double w, Line& L) {
+void forces(const Setup& s, const Constants& c, const Model& model, const std::vector<NodeWater>& water, double w,
+            Line& L) {
   const Problem& p = *s.problem;
   const Environment& env = p.environment;
   const double rho = env.water_density;
@@ -184,11 +218,11 @@ void forces(const Setup& s, const Model& model, const std::vector<NodeWater>& wa
     L.drag_rate[j] = 0.0;
   }
   for (int j = 0; j + 1 < n; ++j) {
-    const MeshInterval& iv = s.mesh->intervals[static_cast<std::size_t>(j)];
-    if (!(iv.h > 0.0)) {
+    const Constants::Interval& ci = c.intervals[static_cast<std::size_t>(j)];
+    if (!ci.m) {
       // Junction: the inline bodies' weight and sphere-like drag at the lower node.
       const Vec3 wv = (1.0 - w) * water[j].w0 + w * water[j].w1;
-      for (std::size_t b : iv.bodies) {
+      for (std::size_t b : s.mesh->intervals[static_cast<std::size_t>(j)].bodies) {
         const Body& body = p.bodies[b];
         L.f[j].z() -= body.wet_weight;
         const Vec3 r = wv - L.v[j];
@@ -197,22 +231,25 @@ void forces(const Setup& s, const Model& model, const std::vector<NodeWater>& wa
       }
       continue;
     }
-    const Material& m = p.materials[iv.material];
-    const double h = iv.h;
+    const Material& m = *ci.m;
+    const double h = ci.h;
     // Weight, half to each end.
-    L.f[j].z() -= 0.5 * h * m.wet_weight;
-    L.f[j + 1].z() -= 0.5 * h * m.wet_weight;
+    L.f[j].z() -= ci.half_weight;
+    L.f[j + 1].z() -= ci.half_weight;
     if (j == s.parted) continue;  // a parted interval carries no force between its nodes
-    const Vec3 d = L.x[j + 1] - L.x[j];
-    const double len = d.norm();
+    const double len = L.chord_len[j];
     const double eps = len / L.ref[j] - 1.0;
-    Vec3 t = len > kShortChord * h ? Vec3(d / len) : Vec3(L.tangent[j]);
+    const bool has_dir = len > kShortChord * h;
+    const Vec3& t = has_dir ? L.chord_dir[j] : L.tangent[j];
     // Axial force with proportional damping on the strain rate; a line without compression
     // neither pushes nor pulls back through the damper below zero tension.
-    const double eps_rate = len > kShortChord * h ? t.dot(L.v[j + 1] - L.v[j]) / L.ref[j] : 0.0;
-    const double slope = std::max(m.rawTensionSlope(std::max(eps, 0.0)), 0.0);
-    double T = m.tension(eps) + kAxialDampingRatio * std::sqrt(slope * m.mass) * h * eps_rate;
-    if (!m.compression) T = m.tension(eps) > 0.0 ? std::max(T, 0.0) : 0.0;
+    const double eps_rate = has_dir ? t.dot(L.v[j + 1] - L.v[j]) / L.ref[j] : 0.0;
+    const double damper =
+        ci.linear ? ci.damper
+                  : kAxialDampingRatio * std::sqrt(std::max(m.rawTensionSlope(std::max(eps, 0.0)), 0.0) * m.mass) * h;
+    const double Te = ci.tension(eps);
+    double T = Te + damper * eps_rate;
+    if (!m.compression) T = Te > 0.0 ? std::max(T, 0.0) : 0.0;
     L.f[j] += T * t;
     L.f[j + 1] -= T * t;
     // Drag on the chord at its mid-point velocity relative to the water.
@@ -222,14 +259,12 @@ void forces(const Setup& s, const Model& model, const std::vector<NodeWater>& wa
     const Vec3 vn = vr - vt * t;
     const double stretch = std::sqrt(std::max(1.0 + eps, 0.0));
     const double vnn = std::sqrt(vn.squaredNorm() + sqr(eq3d::kDragSpeedFloor));
-    const Vec3 drag = -0.5 * rho * m.diameter * h * stretch *
-                      (m.cdn * vnn * vn + eq2d::kPi * m.cdt * std::abs(vt) * vt * t);
+    const Vec3 drag = ci.drag * stretch * (m.cdn * vnn * vn + eq2d::kPi * m.cdt * std::abs(vt) * vt * t);
     L.f[j] += 0.5 * drag;
     L.f[j + 1] += 0.5 * drag;
     // The drag's rate of change with the node's speed (quadratic drag: twice the force per unit
     // speed), half to each node: the update treats the drag implicitly with it.
-    const double rate = 0.5 * rho * m.diameter * h * stretch * 2.0 *
-                        std::max(m.cdn * vnn, eq2d::kPi * m.cdt * std::abs(vt));
+    const double rate = ci.drag_rate * stretch * 2.0 * std::max(m.cdn * vnn, eq2d::kPi * m.cdt * std::abs(vt));
     L.drag_rate[j] += 0.25 * rate;
     L.drag_rate[j + 1] += 0.25 * rate;
   }
@@ -249,19 +284,10 @@ void forces(const Setup& s, const Model& model, const std::vector<NodeWater>& wa
   L.f[n - 1] += model.topForce(w);
   // The seabed (eq. 35-36 with the box rows' contact onset) on each node's tributary length.
   for (int j = 0; j < n; ++j) {
-    double hj = 0.0;
-    const Material* m = nullptr;
-    for (int k : {j - 1, j}) {
-      if (k < 0 || k + 1 >= n) continue;
-      const MeshInterval& iv = s.mesh->intervals[static_cast<std::size_t>(k)];
-      if (iv.h > 0.0) {
-        hj += 0.5 * iv.h;
-        m = &p.materials[iv.material];
-      }
-    }
-    if (!m) continue;
-    const double Fbot = model.seabed(*m, L.x[j], L.v[j]);
-    L.f[j].z() += hj * Fbot;
+    const Constants::Node& cn = c.nodes[static_cast<std::size_t>(j)];
+    if (!cn.m) continue;
+    const double Fbot = model.seabed(*cn.m, L.x[j], L.v[j]);
+    L.f[j].z() += cn.length * Fbot;
   }
 }
 
@@ -277,13 +303,27 @@ bool advance(const Setup& s, const Model& model, const std::vector<NodeWater>& w
     if (!(s.mesh->intervals[static_cast<std::size_t>(j)].h > 0.0)) tie[static_cast<std::size_t>(j) + 1] = j;
   const bool top_held = model.topHeld(), low_held = model.lowHeld();
 
+  const Constants c = Constants::of(s, n);
+  // Each node's mass with the nodes tied to it: structural and bodies' (isotropic), added (across).
+  std::vector<double> mass_s(static_cast<std::size_t>(n), 0.0), mass_a(static_cast<std::size_t>(n), 0.0);
+  for (int j = 0; j < n; ++j) {
+    if (tie[j] >= 0) continue;
+    double ms = L.mass[j] + L.body_mass[j], ma = L.added[j];
+    for (int i = j + 1; i < n && tie[i] == j; ++i) {
+      ms += L.mass[i] + L.body_mass[i];
+      ma += L.added[i];
+    }
+    mass_s[j] = ms;
+    mass_a[j] = ma;
+  }
+
   const double hsub = std::min(stableSubstep(s, L), dt);
   const int steps = std::max(1, static_cast<int>(std::ceil(dt / hsub - 1e-9)));
   const double h = dt / steps;
   for (int k = 1; k <= steps; ++k) {
     const double tk = t0 + k * h;
     updateTangents(s, L);
-    forces(s, model, water, (k - 0.5) / steps, L);
+    forces(s, c, model, water, (k - 0.5) / steps, L);
     // Junctions: the tied node's force and mass go to the node below.
     for (int j = n - 1; j > 0; --j)
       if (tie[j] >= 0) {
@@ -292,11 +332,7 @@ bool advance(const Setup& s, const Model& model, const std::vector<NodeWater>& w
       }
     for (int j = 0; j < n; ++j) {
       if (tie[j] >= 0) continue;
-      double ms = L.mass[j] + L.body_mass[j], ma = L.added[j];
-      for (int i = j + 1; i < n && tie[i] == j; ++i) {
-        ms += L.mass[i] + L.body_mass[i];
-        ma += L.added[i];
-      }
+      const double ms = mass_s[j], ma = mass_a[j];
       double cd = L.drag_rate[j];
       for (int i = j + 1; i < n && tie[i] == j; ++i) cd += L.drag_rate[i];
       const Vec3& t = L.tangent[j];
@@ -363,14 +399,14 @@ bool waitAfterFailedRetry(Impl& im) {
 }
 
 /// After a fallback step: whether the next base step goes to the fallback at once, without an
-/// implicit try: the line is still folded (a node of a material without compression, chain or
-/// rope, whose strain Y[n_unknowns j + eps] is below -kFoldedStrain: negative strain is slack, not
-/// a compressed rod), for less than kMaxSkippedTime in a row (sums of dt).
+/// implicit try: the line is still slack somewhere (a node of a material without compression,
+/// chain or rope, whose strain Y[n_unknowns j + eps] is below -kSlackStrainLimit: negative strain
+/// is slack, not a compressed rod), for less than kMaxSkippedTime in a row (sums of dt).
 template <class Impl>
-bool stayFolded(const Impl& im, int n_unknowns, int eps) {
+bool staySlack(const Impl& im, int n_unknowns, int eps) {
   if (!im.in_fallback || im.fallback_skipped_time >= kMaxSkippedTime * (1.0 - 1e-9)) return false;
   for (int j = 0; j < im.nodes(); ++j)
-    if (!im.mat(j).compression && im.Y[n_unknowns * j + eps] < -kFoldedStrain) return true;
+    if (!im.mat(j).compression && im.Y[n_unknowns * j + eps] < -kSlackStrainLimit) return true;
   return false;
 }
 
