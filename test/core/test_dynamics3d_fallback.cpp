@@ -97,13 +97,14 @@ TEST(Dynamics3DFallback, WithoutTheFallbackTheSameRunStops) {
   EXPECT_NE(r.message.find("cuts"), std::string::npos) << r.message;
 }
 
-// While the line stays slack after a fallback step (a node's interval shorter than unstretched,
-// hence a node at zero tension), the next base step goes to the fallback without an implicit try
-// (no Newton iteration), for at most 1 s in a row (kMaxSkippedTime in lumped_line.hpp), and then
-// the implicit step is tried again. Any slack node keeps the line there, however little it is
-// shortened (lumped::kSlackStrainLimit = 0). After a retry (the first try after a fallback step)
-// fails, the next base step (kRetryWait) goes to the fallback without a try whether slack or not,
-// and the one after it tries again unless the line is slack.
+// While the line stays slack after a fallback step (a node's interval shorter than unstretched
+// by more than the slack band, hence a node at zero tension), the next base step goes to the
+// fallback without an implicit try (no Newton iteration), for at most 1 s in a row
+// (kMaxSkippedTime in lumped_line.hpp), and then the implicit step is tried again. Any such node
+// keeps the line there, however little it is shortened (lumped::kSlackStrainLimit =
+// kSlackStrain). After a retry (the first try after a fallback step) fails, the next base step
+// (kRetryWait) goes to the fallback without a try whether slack or not, and the one after it
+// tries again unless the line is slack.
 TEST(Dynamics3DFallback, ASlackLineStaysInTheFallbackWithoutImplicitTries) {
   const Problem p = heavedSlackNoCompression(12.0);
   DynamicSolver3D solver(p);
@@ -138,8 +139,9 @@ TEST(Dynamics3DFallback, ASlackLineStaysInTheFallbackWithoutImplicitTries) {
       if (!waiting) longest_run = std::max(longest_run, ++in_a_row);
     } else {
       EXPECT_FALSE(waiting) << "step " << k << ": an implicit try right after a failed retry";
-      if (after_fallback && least_strain < 0.0) {
-        // Only the cap lets a slack line try the implicit step.
+      if (after_fallback && least_strain < -kSlackStrain) {
+        // Only the cap lets a slack line (a node a slack band below zero strain: zero tension)
+        // try the implicit step.
         ++slack_tries;
         EXPECT_GE(untried_run * p.dynamics.dt, kMaxSkippedTime - 1e-9)
             << "step " << k << ": an implicit try from a slack line (least strain " << least_strain << ") after "

@@ -66,12 +66,14 @@ constexpr double kShortChord = 1e-6;
 
 // When the solvers go to the fallback and leave it (dynamics2d.cpp, dynamics3d.cpp):
 /// A node of a material without compression whose strain is below -kSlackStrainLimit (slack:
-/// chain heaped, folded or hanging loose, carrying no tension) marks the line as still slack
-/// after a fallback step. Any slack node will do: on the spread mooring at Hs 4 (60 s, 247
-/// implicit tries right after a fallback step) 189 of the 204 tries with a slack node failed, and
-/// 38 of the 43 without one converged; with the limit at a strain of -1e-3 (folded lines only)
-/// the tries from -1e-3 to 0 were 143 of the 207 failed tries of the run.
-constexpr double kSlackStrainLimit = 0.0;
+/// chain heaped, folded or hanging loose, at zero tension) marks the line as still slack after a
+/// fallback step. One slack stretch's width of the no-compression law (kSlackStrain): its tension
+/// is exactly zero there, while a free end rests at half of it (Material::strainAt(0)). Any slack
+/// node will do: on the spread mooring at Hs 4 (60 s, 247 implicit tries right after a fallback
+/// step) 189 of the 204 tries with a node below zero strain failed, all of them below -1e-6, and
+/// 38 of the 43 without one converged; with the limit at -1e-3 (folded lines only) the tries from
+/// -1e-3 to 0 were 143 of the 207 failed tries of the run.
+constexpr double kSlackStrainLimit = kSlackStrain;
 /// For at most this long [s] of simulated time in a row base steps go to the fallback without an
 /// implicit try (whatever the steps' length: in lockstep every sample ends a step): a
 /// heap of chain lying on the seabed can keep a line "slack" long after the implicit step could
