@@ -427,6 +427,48 @@ TEST(Newton, EstimatedConvergenceSavesTheConfirmingIteration) {
   EXPECT_GT(se.error, plain.tolerance);  // stopped on the estimate, not on the last update
 }
 
+TEST(Newton, EstimatedConvergenceWithAKeptJacobianHoldsAMarginBelowTheTolerance) {
+  // A kept Jacobian of slope 1 / (1 - r) on f(x) = x - 0.5 contracts the error by r = 0.05 at
+  // every update: updates sigma_k = (1 - r) r^(k - 1) from an error of 1, and after update k the
+  // error left is exactly the estimate theta / (1 - theta) sigma_k (theta = r). The estimate
+  // stops the iteration once it is below estimate_kept_margin (0.1) times the tolerance.
+  constexpr double kRate = 0.05;
+  auto keptRun = [&](double tolerance, int* iterations) {
+    Scalar seed([](double x) { return (x - 2.0) / (1.0 - kRate); }, [](double) { return 1.0 / (1.0 - kRate); });
+    Scalar line([](double x) { return x - 0.5; }, [](double) { return 1.0; });
+    NewtonOptions o;
+    o.reuse_jacobian = true;
+    o.adaptive = false;  // updates applied in full
+    o.estimate_convergence = true;
+    o.tolerance = tolerance;
+    BandedMatrix ws;
+    Eigen::VectorXd Y(1);
+    Y[0] = 0.0;
+    EXPECT_TRUE(solveNewton(seed, Y, o, &ws).converged);  // leaves its factorization in ws
+    Y[0] = 1.5;
+    NewtonWork w;
+    const SolverSummary s = solveNewton(line, Y, o, &ws, &w);
+    EXPECT_TRUE(s.converged) << s.message;
+    EXPECT_EQ(w.assemblies, 0);  // every update with the kept Jacobian
+    *iterations = s.iterations;
+    return Y[0] - 0.5;
+  };
+  const double margin = NewtonOptions().estimate_kept_margin;
+  ASSERT_EQ(margin, 0.1);
+  int its = 0;
+  // Tolerance 4e-6: sigma_5 = 5.9e-6 is above it, its estimate 3.1e-7 below 0.1 of it: five
+  // updates where eq. 39 alone takes six (sigma_6 = 3.0e-7); the error left is the estimate.
+  double error = keptRun(4e-6, &its);
+  EXPECT_EQ(its, 5);
+  EXPECT_LT(std::abs(error), margin * 4e-6);
+  // Tolerance 8e-6: the estimate after update 4, 6.25e-6, is below the tolerance but not below
+  // 0.1 of it: the iteration goes on to sigma_5 = 5.9e-6 (eq. 39), where an estimate held to the
+  // tolerance itself would have stopped at an error of 6.25e-6.
+  error = keptRun(8e-6, &its);
+  EXPECT_EQ(its, 5);
+  EXPECT_LT(std::abs(error), margin * 8e-6);
+}
+
 // Newton on sign(x) sqrt|x| jumps from x to -x forever (the update is -2x): a two-cycle with
 // sigma constant, which eq. 40 never sees. damp_two_cycles halves the second update, which lands
 // on the root. A shrinking alternation (a Jacobian too small by 0.7: x -> -0.43 x) converges

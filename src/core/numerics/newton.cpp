@@ -119,8 +119,9 @@ class NewtonIteration {
         continue;
       }
       relax(sigma, assembled);
-      update(relaxationApplied(sums, limit));
-      if (converged(sigma, assembled)) return finish();
+      const double applied = relaxationApplied(sums, limit);
+      update(applied);
+      if (converged(sigma, assembled, applied)) return finish();
     }
     return notConverged();
   }
@@ -231,18 +232,23 @@ class NewtonIteration {
     }
   }
 
-  /// After update k: sigma below the tolerance, or (with a fresh Jacobian) the contraction's
-  /// estimate of the remaining error below it.
-  bool converged(double sigma, bool assembled) {
+  /// After update k, made with a fresh Jacobian (`assembled`) or a kept one and applied with the
+  /// factor `applied`: sigma below the tolerance, or the contraction's estimate of the remaining
+  /// error below it.
+  bool converged(double sigma, bool assembled, double applied) {
     ++k_;
     summary_.iterations = k_;
     summary_.error = sigma;
     summary_.relaxation = mu_;
     const double theta = k_ > 1 ? sigma / sigma_before_ : 1.0;  // sigma_before: the update before
-    // (Updates with a fresh Jacobian only: Newton's quadratic contraction makes the estimate
-    // an upper bound, the linear one of a kept Jacobian does not.)
-    const bool estimated = o_.estimate_convergence && assembled && k_ > 1 && theta < o_.estimate_max_theta &&
-                           theta / (1.0 - theta) * sigma < o_.tolerance;
+    // A fresh Jacobian contracts quadratically: the estimate bounds the error left. A kept one
+    // contracts linearly: the estimate is the sum of the updates to come, where the update was
+    // applied in full (a relaxed one leaves 1 - applied of itself undone), held to a margin
+    // below the tolerance (estimate_kept_margin).
+    const double margin = assembled ? 1.0 : o_.estimate_kept_margin;
+    const bool full_or_fresh = assembled || applied == 1.0;
+    const bool estimated = o_.estimate_convergence && full_or_fresh && k_ > 1 && theta < o_.estimate_max_theta &&
+                           theta / (1.0 - theta) * sigma < margin * o_.tolerance;
     return sigma < o_.tolerance || estimated;
   }
 
