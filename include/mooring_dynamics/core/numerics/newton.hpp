@@ -98,6 +98,7 @@ struct NewtonOptions {
   /// (A.2, 30 s); stopped on the estimate at the tolerance itself they moved by up to 0.17 N there
   /// and by 3 N over A.2's 600 s. At 0.1: 0.2 N over the 600 s (rms 0.06 N, against some 200 N
   /// between base steps of 0.1 and 0.05 s), and 22 % fewer iterations (21 021 to 16 458).
+  /// 0: a kept Jacobian stops on eq. 39 alone.
   double estimate_kept_margin = 0.1;
   /// Halve an update that reverses the one before (cosine of the two, scaled by 1/chi, below
   /// -0.9): Newton cycling between two iterates across a kink, such as a touchdown node in and
