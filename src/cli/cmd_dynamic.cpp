@@ -271,6 +271,43 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
   return o.str();
 }
 
+/// Writes a single line's results to `dir` (timeseries.csv, snapshots.csv, static_nodes.csv,
+/// dynamic_summary.json) and names them on `out`; false, with the error on `err`, when it cannot.
+bool writeDynamicOutputs(const fs::path& dir, const core::Problem& problem, const core::DynamicSeries& series,
+                         const DynamicFigures& fig, std::ostream& out, std::ostream& err) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir, ec)) {
+    err << kProg << ": error: cannot create output directory '" << dir.string() << "'"
+        << (ec ? " (" + ec.message() + ")" : std::string(" (exists and is not a directory)")) << "\n";
+    return false;
+  }
+  std::vector<fs::path> written;
+  const bool three_d = problem.formulation == core::Formulation::ThreeD;
+  const fs::path ts = dir / "timeseries.csv";
+  if (!writeFile(ts, [&](std::ostream& f) { writeTimeseriesCsv(f, series, three_d); }, err)) return false;
+  written.push_back(ts);
+  const fs::path snaps = dir / "snapshots.csv";
+  if (!series.snapshots.empty()) {
+    if (!writeFile(snaps, [&](std::ostream& f) { writeSnapshotsCsv(f, series, three_d); }, err)) return false;
+    written.push_back(snaps);
+  } else {
+    fs::remove(snaps, ec);  // never leave a stale file from an earlier run next to new results
+  }
+  const fs::path stat = dir / "static_nodes.csv";
+  if (!writeFile(stat, [&](std::ostream& f) { core::writeStaticCsv(f, series.initial_static, problem.formulation); }, err))
+    return false;
+  written.push_back(stat);
+  const fs::path js = dir / "dynamic_summary.json";
+  if (!writeFile(js, [&](std::ostream& f) { writeDynamicSummaryJson(f, problem, series, fig); }, err)) return false;
+  written.push_back(js);
+  out << "wrote";
+  for (std::size_t i = 0; i < written.size(); ++i)
+    out << (i == 0 ? " " : i + 1 == written.size() ? " and " : ", ") << written[i].string();
+  out << "\n";
+  return true;
+}
+
 }  // namespace
 
 int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
@@ -381,40 +418,7 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
   out << dynamicSummaryText(problem, series, fig);
 
   // Outputs (also when the run stopped early: everything up to the failure).
-  if (!out_dir.empty()) {
-    const fs::path dir(out_dir);
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec || !fs::is_directory(dir, ec)) {
-      err << kProg << ": error: cannot create output directory '" << out_dir << "'"
-          << (ec ? " (" + ec.message() + ")" : std::string(" (exists and is not a directory)")) << "\n";
-      return kExitIo;
-    }
-    std::vector<fs::path> written;
-    const bool three_d = problem.formulation == core::Formulation::ThreeD;
-    const fs::path ts = dir / "timeseries.csv";
-    if (!writeFile(ts, [&](std::ostream& f) { writeTimeseriesCsv(f, series, three_d); }, err)) return kExitIo;
-    written.push_back(ts);
-    const fs::path snaps = dir / "snapshots.csv";
-    if (!series.snapshots.empty()) {
-      if (!writeFile(snaps, [&](std::ostream& f) { writeSnapshotsCsv(f, series, three_d); }, err)) return kExitIo;
-      written.push_back(snaps);
-    } else {
-      fs::remove(snaps, ec);  // never leave a stale file from an earlier run next to new results
-    }
-    const fs::path stat = dir / "static_nodes.csv";
-    if (!writeFile(stat, [&](std::ostream& f) { core::writeStaticCsv(f, series.initial_static, problem.formulation); }, err))
-      return kExitIo;
-    written.push_back(stat);
-    const fs::path js = dir / "dynamic_summary.json";
-    if (!writeFile(js, [&](std::ostream& f) { writeDynamicSummaryJson(f, problem, series, fig); }, err))
-      return kExitIo;
-    written.push_back(js);
-    out << "wrote";
-    for (std::size_t i = 0; i < written.size(); ++i)
-      out << (i == 0 ? " " : i + 1 == written.size() ? " and " : ", ") << written[i].string();
-    out << "\n";
-  }
+  if (!out_dir.empty() && !writeDynamicOutputs(fs::path(out_dir), problem, series, fig, out, err)) return kExitIo;
 
   if (!series.completed) {
     err << kProg << ": error: the dynamic run stopped at t = " << fmtNum("%g", fig.simulated) << " s of "
