@@ -418,6 +418,7 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   im.water = sys.water();
   im.spatialRows(im.Y, im.water, im.S, im.cos_phi, im.sin_phi);
   im.in_fallback = false;
+  im.skipped_cap = lumped::kMaxSkippedTime;
   ++rep.steps;
   ++im.totals.steps;
   rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;

@@ -17,6 +17,7 @@
 #include "mooring_dynamics/core/numerics/fork_join.hpp"
 #include "mooring_dynamics/core/numerics/wave_velocity_cache.hpp"
 #include "mooring_dynamics/core/solvers/dynamics2d.hpp"
+#include "lumped_line.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -59,6 +60,9 @@ struct DynamicSolver2D::Impl {
   /// Base steps still to go to the fallback without an implicit try after a retry failed
   /// (lumped::kRetryWait).
   int retry_wait = 0;
+  /// How long [s] a slack line stays in the fallback without an implicit try before one is made
+  /// (lumped::staySlack): kMaxSkippedTime, doubled after each such try that fails.
+  double skipped_cap = lumped::kMaxSkippedTime;
   /// The reference lengths of the last fallback step's intervals (lumped::Line::ref), which the
   /// next one keeps while the line stays in the fallback.
   std::vector<double> fallback_ref;

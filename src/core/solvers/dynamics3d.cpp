@@ -266,6 +266,7 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   winchRemesh(im);
   breakOnTension(im);
   im.in_fallback = false;
+  im.skipped_cap = lumped::kMaxSkippedTime;
   ++rep.steps;
   ++im.totals.steps;
   rep.smallest_dt = rep.smallest_dt > 0.0 ? std::min(rep.smallest_dt, dt) : dt;
@@ -341,6 +342,7 @@ struct DynamicSolver3D::Saved {
   bool in_fallback = false;
   double fallback_skipped_time = 0.0;
   int retry_wait = 0;
+  double skipped_cap = 0.0;
   std::vector<double> fallback_ref;
   Totals totals;
   WinchSaved winch;  ///< the mesh a winch changes, its program and length
@@ -366,6 +368,7 @@ std::shared_ptr<const DynamicSolver3D::Saved> DynamicSolver3D::save() const {
   s->in_fallback = im.in_fallback;
   s->fallback_skipped_time = im.fallback_skipped_time;
   s->retry_wait = im.retry_wait;
+  s->skipped_cap = im.skipped_cap;
   s->fallback_ref = im.fallback_ref;
   s->totals = im.totals;
   s->winch = winchSave(im);
@@ -394,6 +397,7 @@ void DynamicSolver3D::restore(const Saved& s) {
   im.in_fallback = s.in_fallback;
   im.fallback_skipped_time = s.fallback_skipped_time;
   im.retry_wait = s.retry_wait;
+  im.skipped_cap = s.skipped_cap;
   im.fallback_ref = s.fallback_ref;
   im.totals = s.totals;
   winchRestore(im, s.winch);

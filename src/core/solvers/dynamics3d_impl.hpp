@@ -18,6 +18,7 @@
 #include "mooring_dynamics/core/numerics/fork_join.hpp"
 #include "mooring_dynamics/core/numerics/wave_velocity_cache.hpp"
 #include "mooring_dynamics/core/solvers/dynamics3d.hpp"
+#include "lumped_line.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -105,6 +106,9 @@ struct DynamicSolver3D::Impl {
   /// Base steps still to go to the fallback without an implicit try after a retry failed
   /// (lumped::kRetryWait).
   int retry_wait = 0;
+  /// How long [s] a slack line stays in the fallback without an implicit try before one is made
+  /// (lumped::staySlack): kMaxSkippedTime, doubled after each such try that fails.
+  double skipped_cap = lumped::kMaxSkippedTime;
   /// The reference lengths of the last fallback step's intervals (lumped::Line::ref), which the
   /// next one keeps while the line stays in the fallback.
   std::vector<double> fallback_ref;
@@ -179,7 +183,7 @@ std::string fallbackUnavailable(const DynamicSolver3D::Impl& im, double t_new);
 bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep);
 /// After a fallback step: whether the next base step goes to the fallback at once, without an
 /// implicit try (the line is still slack: some node of a material without compression shorter
-/// than its unstretched length, and for less than kMaxSkippedTime in a row; lumped::staySlack).
+/// than its unstretched length, and for less than skipped_cap in a row; lumped::staySlack).
 bool stayInFallback(const DynamicSolver3D::Impl& im);
 
 // Line events (dynamics3d_events.cpp; docs/method.md "Line events").
