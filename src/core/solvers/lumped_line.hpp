@@ -209,70 +209,87 @@ inline double chordStrain(const Line& L, int j) {
   return (L.x[static_cast<std::size_t>(j) + 1] - L.x[static_cast<std::size_t>(j)]).norm() / L.ref[static_cast<std::size_t>(j)] - 1.0;
 }
 
-/// Forces on the lumped nodes at time fraction `w` of the step [N], with the chords of the last
-/// updateTangents at the same positions and the step's constants `c`.
-template <class Model>
-void forces(const Setup& s, const Constants& c, const Model& model, const std::vector<NodeWater>& water, double w,
-            Line& L) {
-  const Problem& p = *s.problem;
-  const Environment& env = p.environment;
-  const double rho = env.water_density;
-  const int n = L.n;
-  auto sqr = [](double a) { return a * a; };
-  for (int j = 0; j < n; ++j) {
-    L.f[j].setZero();
-    L.drag_rate[j] = 0.0;
-  }
-  for (int j = 0; j + 1 < n; ++j) {
-    const Constants::Interval& ci = c.intervals[static_cast<std::size_t>(j)];
-    if (!ci.m) {
-      // Junction: the inline bodies' weight and sphere-like drag at the lower node.
-      const Vec3 wv = (1.0 - w) * water[j].w0 + w * water[j].w1;
-      for (std::size_t b : s.mesh->intervals[static_cast<std::size_t>(j)].bodies) {
-        const Body& body = p.bodies[b];
-        L.f[j].z() -= body.wet_weight;
-        const Vec3 r = wv - L.v[j];
-        const double area = 0.25 * eq2d::kPi * sqr(body.diameter);
-        L.f[j] += 0.5 * rho * body.isotropicCd() * area * r.norm() * r;
-      }
-      continue;
+/// The sub-steps' state and work in component arrays (advance; the passes in lumped_line.cpp):
+/// each pass over the intervals or the nodes is one loop over plain arrays, which the compiler
+/// vectorizes; every value is the same operations in the same order as a node-by-node loop, so
+/// the results do not depend on the instruction set (no fused multiply-add). Interval j's values
+/// sit at index j + 1 of the interval arrays (n + 1 long, zero at 0 and n), so that node j finds
+/// its lower and upper interval at j and j + 1. Positions in the problem frame (REP 103).
+struct Substeps {
+  int n = 0;
+  // Nodes.
+  std::vector<double> x[3], v[3], f[3], t[3];  ///< position, velocity, force, unit tangent
+  std::vector<double> dr;                      ///< d|drag| / d|v| [N s/m] (semi-implicit drag)
+  std::vector<double> ms, ma;  ///< structural (with bodies and the tied nodes) and added mass [kg]
+  std::vector<double> free;  ///< 0: tied to the node below (a junction's upper node), else 1
+  /// The seabed: flat (no grid, no profile), and per node its tributary length (Constants::Node,
+  /// 0 where no material acts on it), the contact onset of its material (eq2d::contactOnset)
+  /// and 1 where the seabed acts on it.
+  bool flat_seabed = false;
+  std::vector<double> bed_length, bed_onset, bed_acts;
+  // Intervals (padded): chord, its direction where it has one (else 0), axial force and drag.
+  std::vector<double> len, chord_rate, dir[3], eps, Te, damper, Tt[3], hd[3], hw, q;
+  std::vector<double> along[3];  ///< the axial force's direction: the chord's, or the lower node's tangent
+  std::vector<double> has_dir;  ///< 1: the chord is longer than kShortChord of the interval
+  // Interval constants (padded): Constants::Interval's, the reference length, the water sums.
+  std::vector<double> ref, short_h, EA, band, damper_c, drag, drag_rate, cdn, pcdt, s0[3], s1[3];
+  // Flags, 1 or 0 (doubles, as the values: the masks vectorize).
+  std::vector<double> force;  ///< carries axial force and drag (a cable, not parted)
+  std::vector<double> comp;   ///< its law holds through zero (compression)
+  bool all_linear = true;
+  /// The line L's state and the step's constants c and water.
+  static Substeps of(const Setup& s, const Constants& c, const Line& L, const std::vector<NodeWater>& water);
+  /// Chords' lengths and directions, the nodes' tangents (updateTangents).
+  void chords();
+  /// Each interval's strain, elastic tension (Constants::Interval::tension) and damper.
+  void axial(const Constants& c);
+  /// Each interval's axial force T t and half its drag, at time fraction w of the step.
+  void intervalForces(double w);
+  /// Each node's force: weights, axial forces and drag of its two intervals, and its drag rate.
+  void nodeSums();
+  /// One sub-step h of symplectic Euler on the free nodes (see advance).
+  void move(double h);
+  /// Adds the reaction of a flat seabed to the nodes' forces: the solver's (eq3d::seabedReaction,
+  /// eq2d's in 2-D) at a node of vertical velocity v_z, the same operations where it has a
+  /// gradient of 0 and a local frame of the world's.
+  void flatSeabed(const Environment& env);
+  /// The first node whose position or velocity is not finite, or -1.
+  int firstNonFinite() const;
+  Vec3 pos(int j) const { return Vec3(x[0][j], x[1][j], x[2][j]); }
+  Vec3 vel(int j) const { return Vec3(v[0][j], v[1][j], v[2][j]); }
+  Vec3 tangent(int j) const { return Vec3(t[0][j], t[1][j], t[2][j]); }
+  void set(int j, const Vec3& xj, const Vec3& vj) {
+    for (int i = 0; i < 3; ++i) {
+      x[i][j] = xj[i];
+      v[i][j] = vj[i];
     }
-    const Material& m = *ci.m;
-    const double h = ci.h;
-    // Weight, half to each end.
-    L.f[j].z() -= ci.half_weight;
-    L.f[j + 1].z() -= ci.half_weight;
-    if (j == s.parted) continue;  // a parted interval carries no force between its nodes
-    const double len = L.chord_len[j];
-    const double eps = len / L.ref[j] - 1.0;
-    const bool has_dir = len > kShortChord * h;
-    const Vec3& t = has_dir ? L.chord_dir[j] : L.tangent[j];
-    // Axial force with proportional damping on the strain rate; a line without compression
-    // neither pushes nor pulls back through the damper below zero tension.
-    const double eps_rate = has_dir ? t.dot(L.v[j + 1] - L.v[j]) / L.ref[j] : 0.0;
-    const double damper =
-        ci.linear ? ci.damper
-                  : kAxialDampingRatio * std::sqrt(std::max(m.rawTensionSlope(std::max(eps, 0.0)), 0.0) * m.mass) * h;
-    const double Te = ci.tension(eps);
-    double T = Te + damper * eps_rate;
-    if (!m.compression) T = Te > 0.0 ? std::max(T, 0.0) : 0.0;
-    L.f[j] += T * t;
-    L.f[j + 1] -= T * t;
-    // Drag on the chord at its mid-point velocity relative to the water.
-    const Vec3 wv = 0.5 * ((1.0 - w) * (water[j].w0 + water[j + 1].w0) + w * (water[j].w1 + water[j + 1].w1));
-    const Vec3 vr = 0.5 * (L.v[j] + L.v[j + 1]) - wv;
-    const double vt = vr.dot(t);
-    const Vec3 vn = vr - vt * t;
-    const double stretch = std::sqrt(std::max(1.0 + eps, 0.0));
-    const double vnn = std::sqrt(vn.squaredNorm() + sqr(eq3d::kDragSpeedFloor));
-    const Vec3 drag = ci.drag * stretch * (m.cdn * vnn * vn + eq2d::kPi * m.cdt * std::abs(vt) * vt * t);
-    L.f[j] += 0.5 * drag;
-    L.f[j + 1] += 0.5 * drag;
-    // The drag's rate of change with the node's speed (quadratic drag: twice the force per unit
-    // speed), half to each node: the update treats the drag implicitly with it.
-    const double rate = ci.drag_rate * stretch * 2.0 * std::max(m.cdn * vnn, eq2d::kPi * m.cdt * std::abs(vt));
-    L.drag_rate[j] += 0.25 * rate;
-    L.drag_rate[j + 1] += 0.25 * rate;
+  }
+  void addForce(int j, const Vec3& fj) {
+    for (int i = 0; i < 3; ++i) f[i][j] += fj[i];
+  }
+};
+
+/// The loads at time fraction `w` of the step that the component passes leave to the Model (see
+/// advance): inline bodies at junctions, the bodies at free ends, a free top's force and the
+/// seabed, added to the nodes' forces (and drag rates) in that order.
+template <class Model>
+void modelLoads(const Setup& s, const Constants& c, const Model& model, const std::vector<NodeWater>& water, double w,
+                Substeps& k) {
+  const Problem& p = *s.problem;
+  const double rho = p.environment.water_density;
+  const int n = k.n;
+  auto sqr = [](double a) { return a * a; };
+  // Junctions: the inline bodies' weight and sphere-like drag at the lower node.
+  for (int j = 0; j + 1 < n; ++j) {
+    if (c.intervals[static_cast<std::size_t>(j)].m) continue;
+    const Vec3 wv = (1.0 - w) * water[j].w0 + w * water[j].w1;
+    for (std::size_t b : s.mesh->intervals[static_cast<std::size_t>(j)].bodies) {
+      const Body& body = p.bodies[b];
+      k.f[2][j] -= body.wet_weight;
+      const Vec3 r = wv - k.vel(j);
+      const double area = 0.25 * eq2d::kPi * sqr(body.diameter);
+      k.addForce(j, 0.5 * rho * body.isotropicCd() * area * r.norm() * r);
+    }
   }
   // The body at a free lower end, and the subsurface body at a free top: its weight and drag
   // (as the box rows' end balance) on the velocity relative to the water at the end node, taken
@@ -280,20 +297,25 @@ void forces(const Setup& s, const Constants& c, const Model& model, const std::v
   for (const auto& [b, j] : {std::make_pair(s.end_body, 0), std::make_pair(s.top_body, n - 1)}) {
     if (!b) continue;
     const Vec3 wv = (1.0 - w) * water[j].w0 + w * water[j].w1;
-    const Vec3 r = wv - L.v[j];
-    L.f[j] += model.endBodyLoad(*b, L.tangent[j], r);
+    const Vec3 r = wv - k.vel(j);
+    k.addForce(j, model.endBodyLoad(*b, k.tangent(j), r));
     const double q = 0.5 * rho * 0.25 * eq2d::kPi * sqr(b->diameter);
     const double cd = b->drag == Body::Drag::Sphere ? b->cd : std::max(b->cdn, b->cdt);
-    L.drag_rate[j] += q * cd * 2.0 * r.norm();
+    k.dr[j] += q * cd * 2.0 * r.norm();
   }
   // A free top's given force (a force top, a force table's force on a subsurface body).
-  L.f[n - 1] += model.topForce(w);
-  // The seabed (eq. 35-36 with the box rows' contact onset) on each node's tributary length.
+  k.addForce(n - 1, model.topForce(w));
+  // The seabed (eq. 35-36 with the box rows' contact onset) on each node's tributary length: a
+  // flat one in a pass of its own (Substeps::flatSeabed), any other through the solver's rows.
+  if (k.flat_seabed) {
+    k.flatSeabed(p.environment);
+    return;
+  }
   for (int j = 0; j < n; ++j) {
     const Constants::Node& cn = c.nodes[static_cast<std::size_t>(j)];
     if (!cn.m) continue;
-    const double Fbot = model.seabed(*cn.m, L.x[j], L.v[j]);
-    L.f[j].z() += cn.length * Fbot;
+    const double Fbot = model.seabed(*cn.m, k.pos(j), k.vel(j));
+    k.f[2][j] += cn.length * Fbot;
   }
 }
 
@@ -305,65 +327,82 @@ bool advance(const Setup& s, const Model& model, const std::vector<NodeWater>& w
   const int n = L.n;
   // Tie junction nodes (h = 0) to the node below them.
   std::vector<int> tie(static_cast<std::size_t>(n), -1);
+  bool tied = false;
   for (int j = 0; j + 1 < n; ++j)
-    if (!(s.mesh->intervals[static_cast<std::size_t>(j)].h > 0.0)) tie[static_cast<std::size_t>(j) + 1] = j;
+    if (!(s.mesh->intervals[static_cast<std::size_t>(j)].h > 0.0)) {
+      tie[static_cast<std::size_t>(j) + 1] = j;
+      tied = true;
+    }
   const bool top_held = model.topHeld(), low_held = model.lowHeld();
 
   const Constants c = Constants::of(s, n);
+  Substeps k = Substeps::of(s, c, L, water);
   // Each node's mass with the nodes tied to it: structural and bodies' (isotropic), added (across).
-  std::vector<double> mass_s(static_cast<std::size_t>(n), 0.0), mass_a(static_cast<std::size_t>(n), 0.0);
   for (int j = 0; j < n; ++j) {
-    if (tie[j] >= 0) continue;
+    if (tie[j] >= 0) {
+      k.free[j] = 0.0;
+      continue;
+    }
     double ms = L.mass[j] + L.body_mass[j], ma = L.added[j];
     for (int i = j + 1; i < n && tie[i] == j; ++i) {
       ms += L.mass[i] + L.body_mass[i];
       ma += L.added[i];
     }
-    mass_s[j] = ms;
-    mass_a[j] = ma;
+    k.ms[j] = ms;
+    k.ma[j] = ma;
   }
 
   const double hsub = std::min(stableSubstep(s, L), dt);
   const int steps = std::max(1, static_cast<int>(std::ceil(dt / hsub - 1e-9)));
   const double h = dt / steps;
-  for (int k = 1; k <= steps; ++k) {
-    const double tk = t0 + k * h;
-    updateTangents(s, L);
-    forces(s, c, model, water, (k - 0.5) / steps, L);
-    // Junctions: the tied node's force and mass go to the node below.
-    for (int j = n - 1; j > 0; --j)
-      if (tie[j] >= 0) {
-        L.f[tie[j]] += L.f[j];
-        L.f[j].setZero();
-      }
-    for (int j = 0; j < n; ++j) {
-      if (tie[j] >= 0) continue;
-      const double ms = mass_s[j], ma = mass_a[j];
-      double cd = L.drag_rate[j];
-      for (int i = j + 1; i < n && tie[i] == j; ++i) cd += L.drag_rate[i];
-      const Vec3& t = L.tangent[j];
-      // M = ms I + ma (I - t t^T): along t ms, across ms + ma. The drag linearised about the
-      // current velocity and taken at the end of the sub-step (backward Euler in the drag alone)
-      // adds h cd to both: the update is stable whatever the relative speed.
-      const Vec3 ft = t.dot(L.f[j]) * t;
-      const Vec3 a = ft / (ms + h * cd) + (L.f[j] - ft) / (ms + ma + h * cd);
-      L.v[j] += h * a;
-      L.x[j] += h * L.v[j];
+  for (int step = 1; step <= steps; ++step) {
+    const double tk = t0 + step * h;
+    const double w = (step - 0.5) / steps;
+    k.chords();
+    k.axial(c);
+    k.intervalForces(w);
+    k.nodeSums();
+    modelLoads(s, c, model, water, w, k);
+    if (tied) {
+      // Junctions: the tied node's force and drag rate go to the node below.
+      for (int j = n - 1; j > 0; --j)
+        if (tie[j] >= 0)
+          for (int i = 0; i < 3; ++i) {
+            k.f[i][tie[j]] += k.f[i][j];
+            k.f[i][j] = 0.0;
+          }
+      for (int j = 0; j < n; ++j)
+        if (tie[j] < 0)
+          for (int i = j + 1; i < n && tie[i] == j; ++i) k.dr[j] += k.dr[i];
     }
-    for (int j = 1; j < n; ++j)
-      if (tie[j] >= 0) {
-        L.x[j] = L.x[tie[j]];
-        L.v[j] = L.v[tie[j]];
-      }
-    if (top_held) model.top(tk, L.x[n - 1], L.v[n - 1]);
-    if (low_held) model.low(tk, L.x[0], L.v[0]);
-    for (int j = 0; j < n; ++j)
-      if (!L.x[j].allFinite() || !L.v[j].allFinite()) {
-        std::ostringstream os;
-        os << "fallback step from t = " << t0 << " s: node " << j << " left the finite numbers at t = " << tk << " s";
-        message = os.str();
-        return false;
-      }
+    k.move(h);
+    if (tied)
+      for (int j = 1; j < n; ++j)
+        if (tie[j] >= 0)
+          for (int i = 0; i < 3; ++i) {
+            k.x[i][j] = k.x[i][tie[j]];
+            k.v[i][j] = k.v[i][tie[j]];
+          }
+    Vec3 xe, ve;
+    if (top_held) {
+      model.top(tk, xe, ve);
+      k.set(n - 1, xe, ve);
+    }
+    if (low_held) {
+      model.low(tk, xe, ve);
+      k.set(0, xe, ve);
+    }
+    const int bad = k.firstNonFinite();
+    if (bad >= 0) {
+      std::ostringstream os;
+      os << "fallback step from t = " << t0 << " s: node " << bad << " left the finite numbers at t = " << tk << " s";
+      message = os.str();
+      return false;
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    L.x[j] = k.pos(j);
+    L.v[j] = k.vel(j);
   }
   updateTangents(s, L);
   substeps = steps;
