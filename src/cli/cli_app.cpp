@@ -78,6 +78,20 @@ std::string csvNum(double v) {
   return std::string(buf, r.ptr);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Output files
+
+bool makeOutputDir(const fs::path& dir, std::ostream& err) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir, ec)) {
+    err << kProg << ": error: cannot create output directory '" << dir.string() << "'"
+        << (ec ? " (" + ec.message() + ")" : std::string(" (exists and is not a directory)")) << "\n";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace detail
 
 using namespace detail;

@@ -275,13 +275,7 @@ std::string dynamicSummaryText(const core::Problem& p, const core::DynamicSeries
 /// dynamic_summary.json) and names them on `out`; false, with the error on `err`, when it cannot.
 bool writeDynamicOutputs(const fs::path& dir, const core::Problem& problem, const core::DynamicSeries& series,
                          const DynamicFigures& fig, std::ostream& out, std::ostream& err) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir, ec)) {
-    err << kProg << ": error: cannot create output directory '" << dir.string() << "'"
-        << (ec ? " (" + ec.message() + ")" : std::string(" (exists and is not a directory)")) << "\n";
-    return false;
-  }
+  if (!makeOutputDir(dir, err)) return false;
   std::vector<fs::path> written;
   const bool three_d = problem.formulation == core::Formulation::ThreeD;
   const fs::path ts = dir / "timeseries.csv";
@@ -292,6 +286,7 @@ bool writeDynamicOutputs(const fs::path& dir, const core::Problem& problem, cons
     if (!writeFile(snaps, [&](std::ostream& f) { writeSnapshotsCsv(f, series, three_d); }, err)) return false;
     written.push_back(snaps);
   } else {
+    std::error_code ec;
     fs::remove(snaps, ec);  // never leave a stale file from an earlier run next to new results
   }
   const fs::path stat = dir / "static_nodes.csv";
@@ -357,6 +352,8 @@ int runDynamicCmd(const ParsedArgs& args, std::ostream& out, std::ostream& err) 
       dyn.scheme_name = "lambda_inf=" + fmtNum("%.10g", lambda_inf);
     }
   };
+  // The output folder before the run: hours of a run are not lost to a folder that cannot be made.
+  if (!out_dir.empty() && !makeOutputDir(out_dir, err)) return kExitIo;
   if (core::isSystemFile(problem_path))  // several lines joined at points
     return runSystemDynamic(problem_path, overrides, out_dir, out, err);
 

@@ -288,13 +288,7 @@ int runPlot(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
     err << kProg << ": error: gnuplot not found; install it with scripts/setup (Debian package gnuplot-nox)\n";
     return kExitIo;
   }
-  std::error_code ec;
-  fs::create_directories(png_dir, ec);
-  if (ec || !fs::is_directory(png_dir, ec)) {
-    err << kProg << ": error: cannot create output directory '" << png_dir.string() << "'"
-        << (ec ? " (" + ec.message() + ")" : std::string(" (exists and is not a directory)")) << "\n";
-    return kExitIo;
-  }
+  if (!makeOutputDir(png_dir, err)) return kExitIo;
 
   const std::vector<double> chosen = shapeTimes(in);
   const bool want_shapes = !chosen.empty() || in.have_static;

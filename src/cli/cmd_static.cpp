@@ -70,13 +70,7 @@ int runStatic(const ParsedArgs& args, std::ostream& out, std::ostream& err) {
   // Outputs (written also when the solver did not converge: the JSON says so).
   if (!out_dir.empty()) {
     const fs::path dir(out_dir);
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec || !fs::is_directory(dir, ec)) {
-      err << kProg << ": error: cannot create output directory '" << out_dir << "'"
-          << (ec ? " (" + ec.message() + ")" : std::string(" (exists and is not a directory)")) << "\n";
-      return kExitIo;
-    }
+    if (!makeOutputDir(dir, err)) return kExitIo;
     const fs::path json = dir / "static.json";
     const fs::path csv = dir / "static_nodes.csv";
     if (!writeFile(json, [&](std::ostream& f) { core::writeStaticJson(f, problem, result); }, err)) return kExitIo;

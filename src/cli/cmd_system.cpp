@@ -106,17 +106,6 @@ std::string fallbackStepsText(const std::vector<std::pair<std::string, long>>& p
   return text;
 }
 
-/// Create the output directory; false (and the message on err) when that fails.
-bool makeOutputDir(const fs::path& dir, std::ostream& err) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir, ec)) {
-    err << kProg << ": error: cannot create output directory '" << dir.string() << "'\n";
-    return false;
-  }
-  return true;
-}
-
 int runSystemStatic(const std::string& path, bool want_table, std::size_t stride, double spacing_scale,
                     const std::string& out_dir, std::ostream& out, std::ostream& err) {
   core::SystemProblem s;

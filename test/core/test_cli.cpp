@@ -261,6 +261,7 @@ TEST_F(CliTest, UnwritableOutputExitsFive) {
   EXPECT_NE(r.err.find("not_a_dir"), std::string::npos) << r.err;
   const RunResult r2 = run({"static", p.string(), "--out", blocker.string()});  // exists, is a file
   EXPECT_EQ(r2.code, 5) << r2.err;
+  EXPECT_NE(r2.err.find("cannot create output directory '" + blocker.string() + "' ("), std::string::npos) << r2.err;
 }
 
 // ---- dynamic and plot ------------------------------------------------------------------------
@@ -302,6 +303,18 @@ std::string lastLine(const std::string& text) {
 bool isPng(const fs::path& p) {
   const std::string head = readText(p).substr(0, 8);
   return head == std::string("\x89PNG\r\n\x1a\n", 8);
+}
+
+// Every command that writes a folder says which and why it cannot (one helper, makeOutputDir);
+// `dynamic` says so before the run, not after it.
+TEST_F(CliTest, DynamicToAnOutputThatIsAFileExitsFiveAndSaysWhyBeforeRunning) {
+  const fs::path p = file("dyn.yaml", kDynamicProblem);
+  const fs::path blocker = file("a_file", "x");
+  const RunResult r = run({"dynamic", p.string(), "--out", blocker.string()});
+  EXPECT_EQ(r.code, 5) << r.err;
+  // The path and the system's reason (here "Not a directory").
+  EXPECT_NE(r.err.find("cannot create output directory '" + blocker.string() + "' ("), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("completed"), std::string::npos) << "no run before the check: " << r.out;
 }
 
 TEST_F(CliTest, DynamicWritesTimeseriesSnapshotsAndSummary) {
