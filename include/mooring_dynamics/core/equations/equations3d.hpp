@@ -71,30 +71,43 @@ void waterVelocity(const Water& w, const S* Yn, S* out) {
   out[2] = zeroLike(Yn[Z]) + w.w[2];
 }
 
-/// Seabed spring per unit length at a node [N/m] along +z: eq. 35 on the penetration below
-/// z_bot(x, y), onset smoothed as in 2-D (eq2d::seabedSpring).
+/// Penetration p [m] of a node at state Yn below the seabed z_bot(x, y), linear about the node's
+/// (x, y) in the seabed's gradient; false (p untouched) where the node is not below it. A flat
+/// seabed (no grid, no profile: z_bot = -depth, gradient 0) takes no lookup.
 template <class S>
-S seabedSpring(const Environment& env, const S* Yn, double delta) {
+bool seabedPenetration(const Environment& env, const S* Yn, S& p) {
   const double xv = value(Yn[X]), yv = value(Yn[Y]);
-  const double zb = env.seabedElevation(xv, yv);
-  if (!(value(Yn[Z]) < zb)) return zeroLike(Yn[Z]);
-  double gx, gy;
-  env.seabedGradient(xv, yv, gx, gy);
-  const S p = zb + gx * (Yn[X] - xv) + gy * (Yn[Y] - yv) - Yn[Z];
+  const bool flat = env.seabed.grid.empty() && env.seabed.profile.empty();
+  const double zb = flat ? -env.depth : env.seabedElevation(xv, yv);
+  if (!(value(Yn[Z]) < zb)) return false;
+  double gx = 0.0, gy = 0.0;
+  if (!flat) env.seabedGradient(xv, yv, gx, gy);
+  p = zb + gx * (Yn[X] - xv) + gy * (Yn[Y] - yv) - Yn[Z];
+  return true;
+}
+
+/// Eq. 35's spring on penetration p with its onset smoothed over delta (as eq2d::seabedSpring).
+template <class S>
+S seabedSpringOf(const Environment& env, const S& p, double delta) {
   const double k = env.seabed.stiffness;
   if (delta > 0.0 && value(p) < delta) return k * p * p / (2.0 * delta);
   return k * (p - 0.5 * delta);
 }
 
+/// Seabed spring per unit length at a node [N/m] along +z: eq. 35 on the penetration below
+/// z_bot(x, y), onset smoothed as in 2-D (eq2d::seabedSpring).
+template <class S>
+S seabedSpring(const Environment& env, const S* Yn, double delta) {
+  S p;
+  if (!seabedPenetration(env, Yn, p)) return zeroLike(Yn[Z]);
+  return seabedSpringOf(env, p, delta);
+}
+
 /// Fraction of the seabed dashpot acting at a node: 0 to 1 over the contact onset.
 template <class S>
 S contactFraction(const Environment& env, const S* Yn, double delta) {
-  const double xv = value(Yn[X]), yv = value(Yn[Y]);
-  const double zb = env.seabedElevation(xv, yv);
-  if (!(value(Yn[Z]) < zb)) return zeroLike(Yn[Z]);
-  double gx, gy;
-  env.seabedGradient(xv, yv, gx, gy);
-  const S p = zb + gx * (Yn[X] - xv) + gy * (Yn[Y] - yv) - Yn[Z];
+  S p;
+  if (!seabedPenetration(env, Yn, p)) return zeroLike(Yn[Z]);
   if (delta > 0.0 && value(p) < delta) return p / delta;
   return zeroLike(Yn[Z]) + 1.0;
 }
@@ -104,10 +117,13 @@ S contactFraction(const Environment& env, const S* Yn, double delta) {
 template <class S>
 S seabedReaction(const Environment& env, const Material& m, const S* Yn, const S* R) {
   const double delta = eq2d::contactOnset(env, m);
-  const S spring = seabedSpring(env, Yn, delta);
+  S p;
+  if (!seabedPenetration(env, Yn, p)) return zeroLike(Yn[Z]);
+  const S spring = seabedSpringOf(env, p, delta);
   if (!(value(spring) > 0.0) || env.seabed.damping == 0.0) return spring;
   const S Vz = R[6] * Yn[U1] + R[7] * Yn[U2] + R[8] * Yn[U3];
-  return spring - env.seabed.damping * contactFraction(env, Yn, delta) * Vz;
+  const S fraction = delta > 0.0 && value(p) < delta ? S(p / delta) : S(zeroLike(Yn[Z]) + 1.0);
+  return spring - env.seabed.damping * fraction * Vz;
 }
 
 /// Adds the seabed's Coulomb friction on a grounded node to its load g (local components) [N/m]:
