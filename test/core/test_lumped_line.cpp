@@ -333,3 +333,86 @@ TEST(LumpedLine, HangingLineAtItsClosedFormStaticStateStaysThere) {
   }
   EXPECT_GT(moved, 1000.0 * kRestTolerance);
 }
+
+namespace {
+
+/// The part of a solver's state that the fallback's policy reads (lumped::staySlack,
+/// countFailedTry): nodes of (x, z, eps), all of one material, on a flat seabed at -depth.
+struct PolicyLine {
+  struct Totals {
+    long failed_tries = 0, failed_jacobians = 0, fallback_retries = 0;
+  };
+  Problem problem;
+  Eigen::VectorXd Y;
+  bool in_fallback = true;
+  double fallback_skipped_time = 0.0;
+  double skipped_cap = lumped::kMaxSkippedTime;
+  int retry_wait = 0;
+  Totals totals;
+  static constexpr int kUnknowns = 3, kX = 0, kZ = 1, kEps = 2;
+  PolicyLine(int nodes, bool compression) {
+    problem.environment.depth = 50.0;
+    Material m;
+    m.compression = compression;
+    problem.materials.push_back(m);
+    Y = Eigen::VectorXd::Zero(kUnknowns * nodes);
+    for (int j = 0; j < nodes; ++j) {
+      Y[kUnknowns * j + kX] = 2.0 * j;
+      Y[kUnknowns * j + kZ] = -50.01 + 0.5 * j;  // node 0 pressed 1 cm into the seabed, the others above
+      Y[kUnknowns * j + kEps] = 1e-4;           // taut
+    }
+  }
+  int nodes() const { return static_cast<int>(Y.size()) / kUnknowns; }
+  const Material& mat(int) const { return problem.materials[0]; }
+  bool stays() const { return lumped::staySlack(*this, kUnknowns, kEps, kX, -1, kZ); }
+  /// Base steps of dt in the fallback without a try while stays(), up to `limit` [s]; the time.
+  double stayFor(double dt, double limit) {
+    while (stays() && fallback_skipped_time < limit) fallback_skipped_time += dt;
+    return fallback_skipped_time;
+  }
+};
+
+}  // namespace
+
+// Reference: the rules of lumped_line.hpp (staySlack, countFailedTry) as docs/method.md "Slack
+// and snap" states them; times are sums of base steps of 0.1 s. Tolerance: one base step.
+TEST(LumpedLine, ASlackLineStaysInTheFallbackUntilItsCapOrWhileSlackInTheWater) {
+  constexpr double dt = 0.1, step = dt + 1e-9;
+  // No slack node, a rod's negative strain, or a line not in the fallback: no stay.
+  PolicyLine taut(10, false);
+  EXPECT_FALSE(taut.stays());
+  PolicyLine rod(10, true);
+  rod.Y[PolicyLine::kUnknowns * 3 + PolicyLine::kEps] = -1e-3;
+  EXPECT_FALSE(rod.stays());
+  // A free end at rest (half the slack band below zero strain) is not slack.
+  taut.Y[PolicyLine::kEps] = -0.5 * kSlackStrain;
+  EXPECT_FALSE(taut.stays());
+
+  // Slack only on the seabed (node 0): the stay ends at the cap, 1 s; a failed try there doubles
+  // the cap (2, 4, 8 s, no further), and a converged step (the solver resets the cap) ends it.
+  PolicyLine grounded(10, false);
+  grounded.Y[PolicyLine::kEps] = -1e-3;
+  double cap = lumped::kMaxSkippedTime;
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    EXPECT_NEAR(grounded.stayFor(dt, 100.0), cap, step) << "attempt " << attempt;
+    lumped::countFailedTry(grounded, 40);
+    cap = std::min(2.0 * cap, lumped::kLongestSkippedTime);
+    EXPECT_DOUBLE_EQ(grounded.skipped_cap, cap);
+    EXPECT_EQ(grounded.fallback_skipped_time, 0.0) << "the next run starts at the failed try";
+  }
+  EXPECT_EQ(grounded.totals.failed_tries, 5);
+  EXPECT_EQ(grounded.totals.fallback_retries, 5);
+  grounded.in_fallback = false;
+  EXPECT_FALSE(grounded.stays());
+
+  // Slack off the seabed (node 5, 2.5 m above it: chain folded or hanging loose in the water):
+  // the stay goes on past the cap, up to kLongestSuspendedSlack, then the line is tried.
+  PolicyLine loose(10, false);
+  loose.Y[PolicyLine::kUnknowns * 5 + PolicyLine::kEps] = -0.05;
+  EXPECT_NEAR(loose.stayFor(dt, 1000.0), lumped::kLongestSuspendedSlack, step);
+  // Once that node has straightened (only the grounded slack left) the cap holds again.
+  loose.Y[PolicyLine::kUnknowns * 5 + PolicyLine::kEps] = 1e-5;
+  loose.Y[PolicyLine::kEps] = -1e-3;
+  loose.fallback_skipped_time = 0.0;
+  EXPECT_NEAR(loose.stayFor(dt, 1000.0), lumped::kMaxSkippedTime, step);
+}

@@ -234,7 +234,7 @@ bool fallbackStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
 }
 
 bool stayInFallback(const DynamicSolver2D::Impl& im) {
-  return lumped::staySlack(im, N, EPS);
+  return lumped::staySlack(im, N, EPS, X, -1, Z);
 }
 
 }  // namespace core

@@ -391,7 +391,7 @@ bool fallbackStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
 }
 
 bool stayInFallback(const DynamicSolver3D::Impl& im) {
-  return lumped::staySlack(im, N, EPS);
+  return lumped::staySlack(im, N, EPS, X, eq3d::Y, Z);
 }
 
 }  // namespace core
