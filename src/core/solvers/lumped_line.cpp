@@ -1,9 +1,12 @@
 // The lumped-mass line of the fallback step: masses, tangents, stable sub-step, and the
 // sub-steps' passes over component arrays (lumped_line.hpp).
 //
-// The passes (Substeps) are hand-arranged for the compiler's vectorizer, which a whole-run
-// profile showed pays: the fallback's sub-steps were a third of a design storm's run (the
-// spread mooring's lee lines lie slack on the seabed in the fallback for most of their steps).
+// The passes (Substeps) are hand-arranged for the compiler's vectorizer, which whole runs show
+// pays: the fallback's sub-steps were a third of a design storm's run (the spread mooring's lee
+// lines lie slack on the seabed in the fallback for most of their steps) and a quarter of the
+// Hs 4 storm bench's; with the passes, 150 s of config/spread_mooring_storm.yaml runs 1.35-1.53
+// times faster, config/heaved_slack.yaml 4.3 times, the Hs 4 bench 1.25 times, with the same
+// results to the bit (docs/performance.md, "Storms").
 // Each loop runs over plain arrays, with selects in place of branches; compiled for the
 // baseline instruction set, AVX2 and AVX-512 (function multiversioning, as the block LU's
 // kernels), all with the same operations in the same order and no fused multiply-add, so the
