@@ -514,3 +514,39 @@ TEST(Newton, TwoCycleDampingLandsBetweenTheTwoIterates) {
   }
   EXPECT_EQ(plain, damped);
 }
+
+TEST(Newton, ReuseRateDecidesWhetherASlowKeptJacobianStays) {
+  // A kept Jacobian of slope 1 / (1 - r) on f(x) = x - 0.5 contracts the error by exactly r = 0.3
+  // at every update. Below reuse_rate (0.5) it stays to the end: no assembly, the updates shrink
+  // by 0.3 each. Above it (the default 0.15) the second update is too slow, so a fresh Jacobian
+  // is assembled, which solves this linear problem at once. Both end at the root within the
+  // tolerance.
+  constexpr double kRate = 0.3;
+  constexpr double kTolerance = 1e-7;  // eq. 39 on the last update (chi = 1)
+  auto run = [&](double reuse_rate, NewtonWork* w) {
+    Scalar seed([](double x) { return (x - 2.0) / (1.0 - kRate); }, [](double) { return 1.0 / (1.0 - kRate); });
+    Scalar line([](double x) { return x - 0.5; }, [](double) { return 1.0; });
+    NewtonOptions o;
+    o.reuse_jacobian = true;
+    o.reuse_rate = reuse_rate;
+    o.adaptive = false;  // updates applied in full
+    o.tolerance = kTolerance;
+    BandedMatrix ws;
+    Eigen::VectorXd Y(1);
+    Y[0] = 0.0;
+    EXPECT_TRUE(solveNewton(seed, Y, o, &ws).converged);  // leaves its factorization in ws
+    Y[0] = 1.5;
+    const SolverSummary s = solveNewton(line, Y, o, &ws, w);
+    EXPECT_TRUE(s.converged) << s.message;
+    return Y[0] - 0.5;
+  };
+  ASSERT_EQ(NewtonOptions().reuse_rate, 0.15);
+  NewtonWork slow_kept, fresh;
+  EXPECT_LT(std::abs(run(0.5, &slow_kept)), kTolerance);
+  EXPECT_EQ(slow_kept.assemblies, 0);
+  // Updates (1 - r) r^(k - 1) from an error of 1 fall below 1e-7 at k = 15 (1.1e-7 at 14).
+  EXPECT_EQ(slow_kept.residuals, 15);
+  EXPECT_LT(std::abs(run(0.15, &fresh)), kTolerance);
+  EXPECT_EQ(fresh.assemblies, 1);
+  EXPECT_EQ(fresh.residuals, 3);  // the kept updates (the second redone fresh), the confirming one
+}

@@ -48,6 +48,7 @@ TEST(ProblemIo, ParsesDynamicsSection) {
   max_iterations: 40
   relaxation: 0.8
   adaptive_relaxation: false
+  jacobian_reuse_rate: 0.5
   damp_two_cycles: true
   threads: 2
   adaptive_mesh: true
@@ -71,6 +72,7 @@ TEST(ProblemIo, ParsesDynamicsSection) {
   EXPECT_EQ(d.threads, 2);
   EXPECT_DOUBLE_EQ(d.relaxation, 0.8);
   EXPECT_FALSE(d.adaptive_relaxation);
+  EXPECT_DOUBLE_EQ(d.jacobian_reuse_rate, 0.5);
   EXPECT_TRUE(d.damp_two_cycles);
   EXPECT_TRUE(d.adaptive_mesh);
   EXPECT_DOUBLE_EQ(d.mesh_weight, 15);
@@ -145,6 +147,8 @@ TEST(ProblemIo, DynamicsValueErrorsNameKeyValueAndLine) {
   EXPECT_ERROR_HAS(minimalWith("dynamics: {max_iterations: 0}\n"), "dynamics.max_iterations = 0");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {tolerance: 0}\n"), "dynamics.tolerance = 0", "> 0");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {relaxation: 1.5}\n"), "dynamics.relaxation = 1.5", "(0, 1]");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {jacobian_reuse_rate: 1}\n"), "dynamics.jacobian_reuse_rate = 1", "(0, 1)");
+  EXPECT_ERROR_HAS(minimalWith("dynamics: {jacobian_reuse_rate: 0}\n"), "dynamics.jacobian_reuse_rate = 0", "(0, 1)");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {adaptive_mesh: maybe}\n"), "dynamics.adaptive_mesh", "true or false");
   EXPECT_ERROR_HAS(minimalWith("dynamics: {mesh_weight: -2}\n"), "dynamics.mesh_weight = -2", ">= 0");
   EXPECT_ERROR_HAS(minimalWith("dynamics: [1, 2]\n"), "dynamics", "expected a map");

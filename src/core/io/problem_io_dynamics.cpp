@@ -344,6 +344,11 @@ void readStepControl(const Map& m, DynamicOptions& d) {
   }
   if (m.has("adaptive_relaxation")) d.adaptive_relaxation = readBool(m.at("adaptive_relaxation"));
   if (m.has("jacobian_reuse")) d.jacobian_reuse = readBool(m.at("jacobian_reuse"));
+  if (m.has("jacobian_reuse_rate")) {
+    const Item r = m.at("jacobian_reuse_rate");
+    d.jacobian_reuse_rate = readNumber(r);
+    if (!(d.jacobian_reuse_rate > 0.0 && d.jacobian_reuse_rate < 1.0)) r.fail("must be in (0, 1)");
+  }
   if (m.has("damp_two_cycles")) d.damp_two_cycles = readBool(m.at("damp_two_cycles"));
   if (m.has("fallback")) d.fallback = readBool(m.at("fallback"));
   if (m.has("fallback_after_cuts")) {
@@ -436,7 +441,7 @@ void readWinch(const Item& it, Winch& w) {
 void readDynamics(const Item& it, DynamicOptions& d, double line_length) {
   const Map m(it, {"duration", "dt", "output_interval", "snapshot_interval", "record_s", "scheme", "lambda_inf",
                    "alpha_m", "alpha_k", "gamma", "max_cut_levels", "tolerance", "max_iterations", "relaxation",
-                   "adaptive_relaxation", "jacobian_reuse", "damp_two_cycles", "fallback", "fallback_after_cuts", "threads", "adaptive_mesh", "mesh_weight", "top_motion",
+                   "adaptive_relaxation", "jacobian_reuse", "jacobian_reuse_rate", "damp_two_cycles", "fallback", "fallback_after_cuts", "threads", "adaptive_mesh", "mesh_weight", "top_motion",
                    "gnss", "events", "winch"});
   d.duration = m.number("duration", d.duration, Range::Positive);
   d.dt = m.number("dt", d.dt, Range::Positive);

@@ -105,6 +105,8 @@ std::string DynamicOptions::validate() const {
     return k + "fallback_after_cuts = " + std::to_string(fallback_after_cuts) + ": must be in [0, 8] (or not given: automatic)";
   if (!(std::isfinite(tolerance) && tolerance > 0.0)) return fieldError(k + "tolerance", tolerance, "must be > 0");
   if (max_iterations < 1) return k + "max_iterations = " + std::to_string(max_iterations) + ": must be >= 1";
+  if (!(std::isfinite(jacobian_reuse_rate) && jacobian_reuse_rate > 0.0 && jacobian_reuse_rate < 1.0))
+    return fieldError(k + "jacobian_reuse_rate", jacobian_reuse_rate, "must be in (0, 1)");
   if (!(std::isfinite(relaxation) && relaxation > 0.0 && relaxation <= 1.0))
     return fieldError(k + "relaxation", relaxation, "must be in (0, 1]");
   if (threads < 1 || threads > 2) return k + "threads = " + std::to_string(threads) + ": must be 1 or 2";

@@ -117,6 +117,13 @@ struct DynamicOptions {
   /// contact events make the Jacobian jump (it changed where the 2-D chain mooring cut steps).
   /// The step predictor then extrapolates the rate's change too (docs/method.md).
   bool jacobian_reuse = false;
+  /// With jacobian_reuse: the kept Jacobian stays while each update shrinks sigma (eq. 39) to at
+  /// most this fraction of the one before (NewtonOptions::reuse_rate), in (0, 1). It trades
+  /// assemblies for iterations: 0.15 (the default) suits a smooth tow, whose few Jacobians are
+  /// cheap beside its iterations; a moored line in a storm, whose Jacobian (an automatic-
+  /// differentiation assembly and a block LU) costs some fifteen iterations and goes stale
+  /// within a step or two, runs faster at 0.5 (docs/performance.md, "Storms").
+  double jacobian_reuse_rate = 0.15;
   /// Halve a Newton update that undoes the one before (NewtonOptions::damp_two_cycles): a
   /// touchdown node cycling in and out of contact. Same tolerance, fewer iterations where the
   /// line lands on the seabed (A.3: 11 744 -> 11 144); off by default, so that the paper cases'

@@ -28,6 +28,7 @@ inline NewtonOptions stepNewtonOptions(const DynamicOptions& o) {
   no.mu0 = o.relaxation;
   no.adaptive = o.adaptive_relaxation;
   no.reuse_jacobian = o.jacobian_reuse;  // modified Newton (dynamics.jacobian_reuse)
+  no.reuse_rate = o.jacobian_reuse_rate;
   // Stop on the estimated error left (NewtonOptions::estimate_convergence): on the shipped A.3
   // and A.2 runs this saves 16-24 % of the iterations and moves the top tension by 0.4 N and
   // 0.005 N rms, against some 200 N between base steps of 0.1 and 0.05 s.
