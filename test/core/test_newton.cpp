@@ -96,6 +96,21 @@ std::vector<double> appliedRelaxation(const Scalar& s, double final_x) {
 // mu recovered from iterates of magnitude <= ~10 and updates >= ~1e-9: rounding only.
 constexpr double kMuTol = 1e-6;
 
+/// f(x) = x - 0.5 solved from x = 1.5 (options `o`, reuse_jacobian on) with the factorization
+/// that a solve of slope 1 / (1 - rate) leaves in the workspace: every update made with it shrinks
+/// the error by exactly `rate`. Returns the error left, x - 0.5.
+double solveWithKeptSlope(double rate, const NewtonOptions& o, NewtonWork* w, SolverSummary* summary) {
+  Scalar seed([rate](double x) { return (x - 2.0) / (1.0 - rate); }, [rate](double) { return 1.0 / (1.0 - rate); });
+  Scalar line([](double x) { return x - 0.5; }, [](double) { return 1.0; });
+  BandedMatrix ws;
+  Eigen::VectorXd Y(1);
+  Y[0] = 0.0;
+  EXPECT_TRUE(solveNewton(seed, Y, o, &ws).converged);  // leaves its factorization in ws
+  Y[0] = 1.5;
+  *summary = solveNewton(line, Y, o, &ws, w);
+  return Y[0] - 0.5;
+}
+
 }  // namespace
 
 TEST(Newton, BandedCubicSystemConvergesQuadraticallyToTheRoot) {
@@ -434,24 +449,18 @@ TEST(Newton, EstimatedConvergenceWithAKeptJacobianHoldsAMarginBelowTheTolerance)
   // stops the iteration once it is below estimate_kept_margin (0.1) times the tolerance.
   constexpr double kRate = 0.05;
   auto keptRun = [&](double tolerance, int* iterations) {
-    Scalar seed([](double x) { return (x - 2.0) / (1.0 - kRate); }, [](double) { return 1.0 / (1.0 - kRate); });
-    Scalar line([](double x) { return x - 0.5; }, [](double) { return 1.0; });
     NewtonOptions o;
     o.reuse_jacobian = true;
     o.adaptive = false;  // updates applied in full
     o.estimate_convergence = true;
     o.tolerance = tolerance;
-    BandedMatrix ws;
-    Eigen::VectorXd Y(1);
-    Y[0] = 0.0;
-    EXPECT_TRUE(solveNewton(seed, Y, o, &ws).converged);  // leaves its factorization in ws
-    Y[0] = 1.5;
     NewtonWork w;
-    const SolverSummary s = solveNewton(line, Y, o, &ws, &w);
+    SolverSummary s;
+    const double error = solveWithKeptSlope(kRate, o, &w, &s);
     EXPECT_TRUE(s.converged) << s.message;
     EXPECT_EQ(w.assemblies, 0);  // every update with the kept Jacobian
     *iterations = s.iterations;
-    return Y[0] - 0.5;
+    return error;
   };
   const double margin = NewtonOptions().estimate_kept_margin;
   ASSERT_EQ(margin, 0.1);
@@ -524,21 +533,15 @@ TEST(Newton, ReuseRateDecidesWhetherASlowKeptJacobianStays) {
   constexpr double kRate = 0.3;
   constexpr double kTolerance = 1e-7;  // eq. 39 on the last update (chi = 1)
   auto run = [&](double reuse_rate, NewtonWork* w) {
-    Scalar seed([](double x) { return (x - 2.0) / (1.0 - kRate); }, [](double) { return 1.0 / (1.0 - kRate); });
-    Scalar line([](double x) { return x - 0.5; }, [](double) { return 1.0; });
     NewtonOptions o;
     o.reuse_jacobian = true;
     o.reuse_rate = reuse_rate;
     o.adaptive = false;  // updates applied in full
     o.tolerance = kTolerance;
-    BandedMatrix ws;
-    Eigen::VectorXd Y(1);
-    Y[0] = 0.0;
-    EXPECT_TRUE(solveNewton(seed, Y, o, &ws).converged);  // leaves its factorization in ws
-    Y[0] = 1.5;
-    const SolverSummary s = solveNewton(line, Y, o, &ws, w);
+    SolverSummary s;
+    const double error = solveWithKeptSlope(kRate, o, w, &s);
     EXPECT_TRUE(s.converged) << s.message;
-    return Y[0] - 0.5;
+    return error;
   };
   ASSERT_EQ(NewtonOptions().reuse_rate, 0.15);
   NewtonWork slow_kept, fresh;
