@@ -232,7 +232,10 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
   if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
   NewtonOptions no = stepNewtonOptions(im.opt);
   // Back from a fallback step: a few iterations say whether the implicit step holds again.
-  if (im.in_fallback) no.max_iterations = std::min(no.max_iterations, lumped::kRetryIterations);
+  if (im.in_fallback) {
+    no.max_iterations = std::min(no.max_iterations, lumped::kRetryIterations);
+    no.reuse_rate = std::min(no.reuse_rate, lumped::kRetryReuseRate);
+  }
   NewtonWork work;
   const SolverSummary s = solveNewton(sys, Yv, no, &im.newton_matrix, &work);
   im.factored_dt = dt;

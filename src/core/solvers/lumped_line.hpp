@@ -102,6 +102,12 @@ constexpr double kTopRateMismatch = 0.5;
 /// Newton iterations of the first implicit step after a fallback step: a line that is taut again
 /// converges in a handful (the state is the lumped line's, close to the box solution).
 constexpr int kRetryIterations = 10;
+/// A retry keeps a Jacobian only while each update shrinks sigma to at most this fraction of the
+/// one before (NewtonOptions::reuse_rate, the default), whatever dynamics.jacobian_reuse_rate
+/// says: a kept Jacobian that halves the error each update needs some thirteen updates from
+/// 1e-2 to the 1e-6 tolerance, more than kRetryIterations, so with the storm file's 0.5 retries
+/// failed on lines a Jacobian from a fresh assembly would have brought back.
+constexpr double kRetryReuseRate = 0.15;
 /// After such a retry fails, this many base steps go to the fallback without an implicit try.
 /// Retries fail in runs while a line's top is slack (the spread mooring at Hs 4, 60 s: 326 of
 /// 403 retries failed, in runs of five to eight, each costing kRetryIterations iterations and a
