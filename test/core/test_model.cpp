@@ -127,6 +127,7 @@ TEST(Environment, FlatSeabed) {
     EXPECT_EQ(env.seabedElevation(x), -123.0);
     EXPECT_EQ(env.seabedSlope(x), 0.0);
   }
+  EXPECT_TRUE(env.flatSeabed());
 }
 
 TEST(Environment, SeabedProfile) {
@@ -134,6 +135,7 @@ TEST(Environment, SeabedProfile) {
   env.depth = 999.0;  // ignored when a profile is given
   // Depth 100 m at x = 0 rising to 50 m at x = 100, then flat to 60 m deep at x = 200.
   env.seabed.profile = {{0.0, 100.0}, {100.0, 50.0}, {200.0, 60.0}};
+  EXPECT_FALSE(env.flatSeabed());
   EXPECT_NEAR(env.seabedElevation(0.0), -100.0, kRel * 100);
   EXPECT_NEAR(env.seabedElevation(50.0), -75.0, kRel * 100);
   EXPECT_NEAR(env.seabedElevation(150.0), -55.0, kRel * 100);
@@ -176,6 +178,7 @@ TEST(Environment, SeabedGridIsExactOnAPlaneAndABilinearSurface) {
     env.depth = 999.0;  // not used with a grid
     env.seabed.grid = which == 0 ? gridOf(plane) : gridOf(saddle);
     ASSERT_EQ(env.seabed.grid.validate(), "");
+    EXPECT_FALSE(env.flatSeabed());
     for (double x : {-100.0, -77.7, -50.0, 0.0, 12.5, 49.9, 50.0})
       for (double y : {50.0, 51.0, 70.0, 83.3, 90.0}) {
         const double d = which == 0 ? plane(x, y) : saddle(x, y);

@@ -188,7 +188,7 @@ Substeps Substeps::of(const Setup& s, const Constants& c, const Line& L, const s
   k.force.assign(ni, 0.0);
   k.comp.assign(ni, 1.0);
   const Environment& env = s.problem->environment;
-  k.flat_seabed = env.seabed.grid.empty() && env.seabed.profile.empty();
+  k.flat_seabed = env.flatSeabed();
   k.bed_length.assign(nn, 0.0);
   k.bed_onset.assign(nn, 0.0);
   k.bed_acts.assign(nn, 0.0);

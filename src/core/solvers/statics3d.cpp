@@ -178,7 +178,7 @@ Problem planarProjection(const Problem& p, double psi) {
     q.anchor_y = 0.0;
     const double L = p.totalLength();
     Environment& e = q.environment;
-    if (!p.environment.seabed.grid.empty() || !p.environment.seabed.profile.empty()) {
+    if (!p.environment.flatSeabed()) {
       constexpr int kSamples = 400;
       e.seabed.grid = SeabedGrid{};
       e.seabed.profile.clear();

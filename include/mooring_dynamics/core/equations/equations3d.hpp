@@ -77,7 +77,7 @@ void waterVelocity(const Water& w, const S* Yn, S* out) {
 template <class S>
 bool seabedPenetration(const Environment& env, const S* Yn, S& p) {
   const double xv = value(Yn[X]), yv = value(Yn[Y]);
-  const bool flat = env.seabed.grid.empty() && env.seabed.profile.empty();
+  const bool flat = env.flatSeabed();
   const double zb = flat ? -env.depth : env.seabedElevation(xv, yv);
   if (!(value(Yn[Z]) < zb)) return false;
   double gx = 0.0, gy = 0.0;

@@ -233,6 +233,8 @@ struct Environment {
   /// The 2-D solver's section y = 0: seabedElevation(x, 0) and its slope dz_bot/dx [-].
   double seabedElevation(double x) const;
   double seabedSlope(double x) const;
+  /// Neither a grid nor a profile: the seabed is flat at -depth (and its gradient zero).
+  bool flatSeabed() const { return seabed.grid.empty() && seabed.profile.empty(); }
   /// Current velocity (east, north) [m/s] at elevation z [m] (z <= 0 in water).
   void currentAt(double z, double& ux, double& uy) const;
   /// Vertical gradient d(ux, uy)/dz [1/s] of currentAt at elevation z [m]: the slope of the
