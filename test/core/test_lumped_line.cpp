@@ -416,3 +416,23 @@ TEST(LumpedLine, ASlackLineStaysInTheFallbackUntilItsCapOrWhileSlackInTheWater) 
   loose.fallback_skipped_time = 0.0;
   EXPECT_NEAR(loose.stayFor(dt, 1000.0), lumped::kMaxSkippedTime, step);
 }
+
+// Reference: lumped_line.hpp's retry rule (docs/method.md "Slack and snap"): a retry gets at most
+// kRetryIterations iterations and keeps a Jacobian only at kRetryReuseRate; stricter options
+// (fewer iterations, a lower rate) are left as they are. Exact: the rule is a minimum.
+TEST(LumpedLine, ARetryGetsFewIterationsAndTheDefaultReuseRate) {
+  NewtonOptions storm;
+  storm.max_iterations = 16;
+  storm.reuse_rate = 0.5;
+  const NewtonOptions retry = lumped::retryNewtonOptions(storm);
+  EXPECT_EQ(retry.max_iterations, lumped::kRetryIterations);
+  EXPECT_EQ(retry.reuse_rate, lumped::kRetryReuseRate);
+  EXPECT_EQ(retry.tolerance, storm.tolerance) << "only the two limits change";
+  EXPECT_LT(lumped::kRetryIterations, storm.max_iterations);
+  NewtonOptions strict;
+  strict.max_iterations = 4;
+  strict.reuse_rate = 0.05;
+  const NewtonOptions kept = lumped::retryNewtonOptions(strict);
+  EXPECT_EQ(kept.max_iterations, 4);
+  EXPECT_EQ(kept.reuse_rate, 0.05);
+}

@@ -381,12 +381,9 @@ bool tryStep(DynamicSolver2D::Impl& im, double dt, StepReport& rep) {
   Eigen::VectorXd Y = im.Y + dt * im.Yd;
   if (im.opt.jacobian_reuse && sameStepSize(im.last_dt, dt) && im.Yd_prev.size() == im.Yd.size())
     Y += 0.5 * dt * (im.Yd - im.Yd_prev);
-  NewtonOptions no = stepNewtonOptions(im.opt);
   // Back from a fallback step: a few iterations say whether the implicit step holds again.
-  if (im.in_fallback) {
-    no.max_iterations = std::min(no.max_iterations, lumped::kRetryIterations);
-    no.reuse_rate = std::min(no.reuse_rate, lumped::kRetryReuseRate);
-  }
+  const NewtonOptions no =
+      im.in_fallback ? lumped::retryNewtonOptions(stepNewtonOptions(im.opt)) : stepNewtonOptions(im.opt);
   // A kept factorization (modified Newton) belongs to one step size.
   if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
   NewtonWork work;

@@ -230,12 +230,9 @@ bool tryStep(DynamicSolver3D::Impl& im, double dt, StepReport& rep) {
     if (1.0 + Yv[i + EPS] < DynamicStepSystem3D::kStretchFloor * (1.0 + im.Y[i + EPS])) Yv[i + EPS] = im.Y[i + EPS];
   // A kept factorization belongs to one step size (the matrix holds 1 / (gamma dt)).
   if (!sameStepSize(dt, im.factored_dt)) im.newton_matrix.setZero();
-  NewtonOptions no = stepNewtonOptions(im.opt);
   // Back from a fallback step: a few iterations say whether the implicit step holds again.
-  if (im.in_fallback) {
-    no.max_iterations = std::min(no.max_iterations, lumped::kRetryIterations);
-    no.reuse_rate = std::min(no.reuse_rate, lumped::kRetryReuseRate);
-  }
+  const NewtonOptions no =
+      im.in_fallback ? lumped::retryNewtonOptions(stepNewtonOptions(im.opt)) : stepNewtonOptions(im.opt);
   NewtonWork work;
   const SolverSummary s = solveNewton(sys, Yv, no, &im.newton_matrix, &work);
   im.factored_dt = dt;

@@ -48,6 +48,7 @@
 #include "mooring_dynamics/core/equations/equations3d.hpp"
 #include "mooring_dynamics/core/equations/mesh.hpp"
 #include "mooring_dynamics/core/model/model.hpp"
+#include "mooring_dynamics/core/numerics/newton.hpp"
 
 namespace mooring_dynamics {
 namespace core {
@@ -108,6 +109,14 @@ constexpr int kRetryIterations = 10;
 /// 1e-2 to the 1e-6 tolerance, more than kRetryIterations, so with the storm file's 0.5 retries
 /// failed on lines a Jacobian from a fresh assembly would have brought back.
 constexpr double kRetryReuseRate = 0.15;
+/// The Newton options of a retry (the first implicit try after a fallback step) from those of
+/// an implicit step: at most kRetryIterations iterations, a kept Jacobian held to
+/// kRetryReuseRate; options already stricter stay as they are.
+inline NewtonOptions retryNewtonOptions(NewtonOptions no) {
+  no.max_iterations = std::min(no.max_iterations, kRetryIterations);
+  no.reuse_rate = std::min(no.reuse_rate, kRetryReuseRate);
+  return no;
+}
 /// After such a retry fails, this many base steps go to the fallback without an implicit try.
 /// Retries fail in runs while a line's top is slack (the spread mooring at Hs 4, 60 s: 326 of
 /// 403 retries failed, in runs of five to eight, each costing kRetryIterations iterations and a
