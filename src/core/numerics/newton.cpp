@@ -43,6 +43,14 @@ UpdateSum scaledUpdateSum(const Eigen::VectorXd& inv_chi, const Eigen::VectorXd&
   return u;
 }
 
+/// MD_NEWTON_TRACE set: every update (sigma, relaxation, applied factor, largest update and
+/// whether the Jacobian was kept) and how each call ended, on stderr. A diagnosis aid: with
+/// several lines on threads their lines interleave; trace one thread.
+bool tracing() {
+  static const bool on = std::getenv("MD_NEWTON_TRACE") != nullptr;
+  return on;
+}
+
 bool allFinite(const Eigen::VectorXd& v, int first, int end) { return v.segment(first, end - first).allFinite(); }
 
 /// The vector work of an iteration over the unknowns [0, split) and [split, n): each part on
@@ -120,6 +128,7 @@ class NewtonIteration {
       }
       relax(sigma, assembled);
       const double applied = relaxationApplied(sums, limit);
+      trace(sigma, applied, assembled);
       update(applied);
       if (converged(sigma, assembled, applied)) return finish();
     }
@@ -197,8 +206,12 @@ class NewtonIteration {
     mu_before_ = mu_;
     if (o_.reuse_jacobian) last_kept_ = !assembled;
     sigma_prev_ = sigma;
-    if (std::getenv("MD_NEWTON_TRACE"))
-      std::fprintf(stderr, "newton %d sigma %.3e mu %.3e worst %s dY %.3e%s\n", k_, sigma, mu_,
+  }
+
+  /// MD_NEWTON_TRACE (tracing()): one line per update.
+  void trace(double sigma, double applied, bool assembled) const {
+    if (tracing())
+      std::fprintf(stderr, "newton %d sigma %.3e mu %.3e applied %.3e worst %s dY %.3e%s\n", k_, sigma, mu_, applied,
                    system_.describe(worst_).c_str(), dY_[worst_], assembled ? "" : " (kept Jacobian)");
   }
 
@@ -264,6 +277,7 @@ class NewtonIteration {
 
   SolverSummary finish() {
     summary_.converged = true;
+    traceEnd();
     std::ostringstream os;
     os << "converged in " << summary_.iterations << " iterations (sigma = " << summary_.error << ")";
     summary_.message = os.str();
@@ -273,12 +287,14 @@ class NewtonIteration {
 
   SolverSummary fail(const std::string& message) {
     summary_.iterations = k_;
+    traceEnd();
     summary_.message = message;
     if (work_) *work_ = counts_;
     return summary_;
   }
 
   SolverSummary notConverged() {
+    traceEnd();
     if (work_) *work_ = counts_;
     std::ostringstream os;
     os << "did not converge in " << o_.max_iterations << " iterations: sigma = " << summary_.error
@@ -286,6 +302,13 @@ class NewtonIteration {
        << system_.describe(worst_);
     summary_.message = os.str();
     return summary_;
+  }
+
+  /// MD_NEWTON_TRACE (tracing()): how the call ended, after its iterations' lines.
+  void traceEnd() const {
+    if (tracing())
+      std::fprintf(stderr, "newton end %s iterations %d of %d jacobians %d\n",
+                   summary_.converged ? "converged" : "failed", k_, o_.max_iterations, counts_.assemblies);
   }
 
   NewtonSystem& system_;
